@@ -1,0 +1,40 @@
+/* main.c — `splinecast COMMAND ...`: finds the subcommand in one table and
+ * runs it. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+static const command commands[] = {
+    {"info", cmd_info, "what a scene holds and which variant keys it needs"},
+    {"eval", cmd_eval, "evaluate a surface point, partials and normal"},
+    {"convert", cmd_convert, "read a scene and write it as Wavefront OBJ"},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: splinecast COMMAND [options]   (splinecast COMMAND --help)\n\n"
+               "Ray casts trimmed NURBS and spline surfaces on the GPU.\n\ncommands:\n");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "\nA SCENE is a .bpt, .obj or .igs/.iges file, or `teapot` for the "
+               "embedded 32-patch teapot.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(argv[1], commands[i].name))
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "splinecast: unknown command '%s'\n\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

@@ -1,0 +1,107 @@
+/* base.c — error records, the logger and checked allocation (sc_base.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "sc_base.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+int sc_fail(sc_error *err, const char *file, int line, const char *fmt, ...)
+{
+    if (!err)
+        return SC_FAIL;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    va_end(ap);
+    snprintf(err->file, sizeof err->file, "%s", file ? file : "");
+    err->line = line;
+    return SC_FAIL;
+}
+
+const char *sc_error_text(const sc_error *err, char *buf, size_t size)
+{
+    if (err->file[0] && err->line > 0)
+        snprintf(buf, size, "%s:%d: %s", err->file, err->line, err->message);
+    else if (err->file[0])
+        snprintf(buf, size, "%s: %s", err->file, err->message);
+    else if (err->key[0])
+        snprintf(buf, size, "key %s: %s", err->key, err->message);
+    else
+        snprintf(buf, size, "%s", err->message);
+    return buf;
+}
+
+static sc_log_level log_threshold = SC_LOG_WARN;
+static sc_logger_fn log_fn;
+static void *log_user;
+
+void sc_set_logger(sc_logger_fn fn, void *user)
+{
+    log_fn = fn;
+    log_user = user;
+}
+
+void sc_set_log_level(sc_log_level level) { log_threshold = level; }
+
+void sc_log(sc_log_level level, const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (log_fn) {
+        log_fn(level, msg, log_user);
+        return;
+    }
+    if (level < log_threshold)
+        return;
+    static const char *const names[] = {"debug", "info", "warning", "error"};
+    fprintf(stderr, "splinecast: %s: %s\n", names[level], msg);
+}
+
+static void out_of_memory(size_t count, size_t size)
+{
+    fprintf(stderr, "splinecast: out of memory (%zu x %zu bytes)\n", count, size);
+    abort();
+}
+
+void *sc_alloc(size_t count, size_t size)
+{
+    if (count == 0 || size == 0)
+        count = size = 1;
+    void *p = calloc(count, size);
+    if (!p)
+        out_of_memory(count, size);
+    return p;
+}
+
+void *sc_realloc(void *ptr, size_t count, size_t size)
+{
+    if (count == 0 || size == 0)
+        count = size = 1;
+    if (count > SIZE_MAX / size)
+        out_of_memory(count, size);
+    void *p = realloc(ptr, count * size);
+    if (!p)
+        out_of_memory(count, size);
+    return p;
+}
+
+char *sc_strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *p = sc_alloc(n, 1);
+    memcpy(p, s, n);
+    return p;
+}
+
+double sc_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}

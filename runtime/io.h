@@ -1,0 +1,36 @@
+/* io.h — scene readers and writers. Every reader either fills the whole
+ * scene or fails with "file:line: what is wrong" in the error record and
+ * leaves the scene empty: never a silently partial scene. Readers call
+ * sc_scene_validate_loops before returning. */
+#ifndef SC_IO_H
+#define SC_IO_H
+
+#include "scene.h"
+
+/* Reads by extension: .bpt, .obj, .igs/.iges (case-insensitive). The
+ * special name "teapot" (no file) is the embedded 32-patch teapot. */
+int sc_read_scene(const char *path, sc_scene *scene, sc_error *err);
+
+/* Readers from memory; `name` is used in messages. `text` need not be
+ * NUL-terminated. */
+int sc_read_bpt(const char *text, size_t size, const char *name, sc_scene *scene,
+                sc_error *err);
+int sc_read_obj(const char *text, size_t size, const char *name, sc_scene *scene,
+                sc_error *err);
+int sc_read_iges(const char *text, size_t size, const char *name, sc_scene *scene,
+                 sc_error *err);
+
+/* The embedded default scene: Newell's 32-patch teapot. */
+int sc_load_default_scene(sc_scene *scene, sc_error *err);
+
+/* Wavefront OBJ free-form writer: geometry written with %.17g so it reads
+ * back bit-exact, names as `o`, transforms baked in, colours through a
+ * .mtl beside it (same base name). Written to a temporary file and renamed,
+ * so a failure leaves nothing half-written. */
+int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err);
+
+/* Whole file into memory (NUL-terminated); fails with a message naming the
+ * file. */
+int sc_read_file(const char *path, char **data, size_t *size, sc_error *err);
+
+#endif

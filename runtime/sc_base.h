@@ -1,0 +1,58 @@
+/* sc_base.h — what every part of libsplinecast shares: the error record that
+ * library functions fill instead of exiting, the one logger, and checked
+ * allocation. Only the command line decides to exit. */
+#ifndef SC_BASE_H
+#define SC_BASE_H
+
+#include <stddef.h>
+#include <stdarg.h>
+
+/* Status codes returned by library functions. */
+enum { SC_OK = 0, SC_FAIL = -1 };
+
+/* Filled by a failing library call. `file`/`line` name the input position
+ * (a scene file and its line) when the failure is about input; `key` names
+ * the variant key when it is about a generated program. */
+typedef struct sc_error {
+    char message[512];
+    char file[256];
+    int line;
+    char key[128];
+} sc_error;
+
+/* Record a failure in `err` (which may be NULL) and return SC_FAIL.
+ * `file` may be NULL and `line` 0 when there is no input position. */
+int sc_fail(sc_error *err, const char *file, int line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* "file:line: message" (or just the message) into buf. */
+const char *sc_error_text(const sc_error *err, char *buf, size_t size);
+
+/* Log levels, lowest first. */
+typedef enum sc_log_level {
+    SC_LOG_DEBUG = 0,
+    SC_LOG_INFO,
+    SC_LOG_WARN,
+    SC_LOG_ERROR
+} sc_log_level;
+
+typedef void (*sc_logger_fn)(sc_log_level level, const char *message, void *user);
+
+/* The library's single logger. Default: warnings and errors to stderr,
+ * prefixed "splinecast: warning: " etc. Passing NULL restores the default. */
+void sc_set_logger(sc_logger_fn fn, void *user);
+/* Messages below `level` are dropped by the default logger (default WARN). */
+void sc_set_log_level(sc_log_level level);
+void sc_log(sc_log_level level, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Allocation that aborts with a message on exhaustion: the library never
+ * continues with a NULL it did not expect. Sizes are checked for overflow. */
+void *sc_alloc(size_t count, size_t size);          /* zeroed */
+void *sc_realloc(void *ptr, size_t count, size_t size);
+char *sc_strdup(const char *s);
+
+/* Monotonic clock in seconds, for progress and benchmark output. */
+double sc_now(void);
+
+#endif
