@@ -1,5 +1,5 @@
 /* main.c — runs the tests listed in the generated tests_list.h (one line
- * X(name) per TEST in tests/*.c), in order, or only those whose names
+ * X(name) per TEST in the files of tests/), in order, or only those whose names
  * contain one of the command-line arguments. Last line: N passed, N failed. */
 #define _POSIX_C_SOURCE 200809L
 #include "test.h"

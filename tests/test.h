@@ -1,5 +1,5 @@
 /* test.h — the test framework: TEST(name) defines a test, found by the
- * Makefile (every line starting with "TEST(" in tests/*.c goes into one
+ * Makefile (every line starting with "TEST(" in any file of tests/ goes into one
  * generated list), run by tests/main.c. Assertions print file, line, the
  * expression and both values, mark the test failed and return from it. */
 #ifndef SC_TEST_H

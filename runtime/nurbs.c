@@ -1,0 +1,968 @@
+/* nurbs.c — the NURBS core (nurbs.h) in double precision. Evaluation is the
+ * hot path of the CPU reference ray caster: it works in stack buffers for
+ * degrees up to MAX_STACK_DEGREE and only allocates beyond. Rational geometry
+ * is handled in homogeneous form (x·w, y·w, z·w, w) throughout: knot
+ * insertion, refinement, subdivision and degree elevation act on the
+ * homogeneous points unchanged, and evaluation divides at the end (quotient
+ * rule for derivatives). Algorithms after Piegl & Tiller, The NURBS Book:
+ * span search A2.1, basis A2.2/A2.3, insertion A5.1/A5.3, refinement
+ * A5.4/A5.5, Bézier extraction by refinement, degree elevation by Bézier
+ * segments and exact knot removal (A5.8's two-sided recursion). */
+#include "nurbs.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MAX_STACK_DEGREE = 32, STACK_ORDER = MAX_STACK_DEGREE + 1 };
+
+/* Scratch memory: a stack array when it is large enough, else the heap. */
+static double *scratch(double *stack_buf, size_t stack_len, size_t need)
+{
+    return need <= stack_len ? stack_buf : sc_alloc(need, sizeof(double));
+}
+
+static void scratch_release(double *buf, const double *stack_buf)
+{
+    if (buf != stack_buf)
+        free(buf);
+}
+
+/* Clamps into [lo, hi]; NaN goes to lo, so evaluation never reads outside
+ * the control net. */
+static double clamp_to(double x, double lo, double hi)
+{
+    return x >= lo ? (x <= hi ? x : hi) : lo;
+}
+
+/* ------------------------------------------------------------------ */
+/* Knot spans and basis functions                                       */
+/* ------------------------------------------------------------------ */
+
+int sc_find_span(int degree, const double *knots, int ncp, double u)
+{
+    int n = ncp - 1;
+    double lo = knots[degree], hi = knots[n + 1];
+    if (!(u > lo)) /* also catches NaN */
+        u = lo;
+    if (u >= hi) {
+        /* The domain's closed upper end belongs to the last span that is
+         * not empty (interior knots may repeat up to degree+1 times). */
+        int span = n;
+        while (span > degree && !(knots[span] < knots[span + 1]))
+            span--;
+        return span;
+    }
+    int low = degree, high = n + 1;
+    /* Invariant: knots[low] <= u < knots[high]. */
+    while (high - low > 1) {
+        int mid = (low + high) / 2;
+        if (u < knots[mid])
+            high = mid;
+        else
+            low = mid;
+    }
+    return low;
+}
+
+/* Cox–de Boor triangle: the degree+1 functions non-zero on the span, built
+ * without divisions by zero since the span is not empty. */
+static void basis_in(int span, double u, int degree, const double *knots, double *N,
+                     double *left, double *right)
+{
+    N[0] = 1.0;
+    for (int j = 1; j <= degree; j++) {
+        left[j] = u - knots[span + 1 - j];
+        right[j] = knots[span + j] - u;
+        double saved = 0.0;
+        for (int r = 0; r < j; r++) {
+            double temp = N[r] / (right[r + 1] + left[j - r]);
+            N[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        N[j] = saved;
+    }
+}
+
+void sc_basis(int span, double u, int degree, const double *knots, double *N)
+{
+    double stack[2 * STACK_ORDER];
+    double *buf = scratch(stack, 2 * STACK_ORDER, 2 * (size_t)(degree + 1));
+    basis_in(span, u, degree, knots, N, buf, buf + degree + 1);
+    scratch_release(buf, stack);
+}
+
+/* A2.3: the table ndu holds the basis functions of every degree up to
+ * `degree` (upper triangle) and the knot differences (lower triangle); the
+ * derivatives are combinations of its columns with coefficients a[][]. */
+static void basis_ders_in(int span, double u, int degree, const double *knots, int n,
+                          double *ders, double *work)
+{
+    int p = degree, order = p + 1;
+    double *ndu = work;                    /* order × order */
+    double *left = ndu + order * order;    /* order */
+    double *right = left + order;          /* order */
+    double *a = right + order;             /* 2 × order */
+#define NDU(i, j) ndu[(i) * order + (j)]
+    NDU(0, 0) = 1.0;
+    for (int j = 1; j <= p; j++) {
+        left[j] = u - knots[span + 1 - j];
+        right[j] = knots[span + j] - u;
+        double saved = 0.0;
+        for (int r = 0; r < j; r++) {
+            NDU(j, r) = right[r + 1] + left[j - r];
+            double temp = NDU(r, j - 1) / NDU(j, r);
+            NDU(r, j) = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        NDU(j, j) = saved;
+    }
+    for (int j = 0; j <= p; j++)
+        ders[j] = NDU(j, p);
+    int nmax = n < p ? n : p;
+    for (int r = 0; r <= p; r++) {
+        double *a_prev = a, *a_next = a + order;
+        a_prev[0] = 1.0;
+        for (int k = 1; k <= nmax; k++) {
+            double d = 0.0;
+            int rk = r - k, pk = p - k;
+            if (r >= k) {
+                a_next[0] = a_prev[0] / NDU(pk + 1, rk);
+                d = a_next[0] * NDU(rk, pk);
+            }
+            int j1 = rk >= -1 ? 1 : -rk;
+            int j2 = r - 1 <= pk ? k - 1 : p - r;
+            for (int j = j1; j <= j2; j++) {
+                a_next[j] = (a_prev[j] - a_prev[j - 1]) / NDU(pk + 1, rk + j);
+                d += a_next[j] * NDU(rk + j, pk);
+            }
+            if (r <= pk) {
+                a_next[k] = -a_prev[k - 1] / NDU(pk + 1, r);
+                d += a_next[k] * NDU(r, pk);
+            }
+            ders[k * order + r] = d;
+            double *swap = a_prev;
+            a_prev = a_next;
+            a_next = swap;
+        }
+    }
+#undef NDU
+    double factor = p;
+    for (int k = 1; k <= nmax; k++) {
+        for (int j = 0; j <= p; j++)
+            ders[k * order + j] *= factor;
+        factor *= p - k;
+    }
+    for (int k = nmax + 1; k <= n; k++)
+        for (int j = 0; j <= p; j++)
+            ders[k * order + j] = 0.0;
+}
+
+static size_t basis_ders_work(int degree)
+{
+    size_t order = (size_t)degree + 1;
+    return order * order + 4 * order;
+}
+
+void sc_basis_ders(int span, double u, int degree, const double *knots, int n, double *ders)
+{
+    enum { STACK_WORK = STACK_ORDER * STACK_ORDER + 4 * STACK_ORDER };
+    double stack[STACK_WORK];
+    double *work = scratch(stack, STACK_WORK, basis_ders_work(degree));
+    basis_ders_in(span, u, degree, knots, n, ders, work);
+    scratch_release(work, stack);
+}
+
+/* The basis functions and their first derivatives, cheaper than A2.3 for
+ * the evaluation hot path: from the degree p−1 functions, with
+ * T_j = N_{j−1,p−1} / (U[span+j] − U[span+j−p]) (zero outside 1..p),
+ *   N_j = (u − U[span−p+j]) T_j + (U[span+j+1] − u) T_{j+1},
+ *   N'_j = p (T_j − T_{j+1}).
+ * `work` holds 3 (p + 1) + 1 doubles. */
+static void basis_with_d1(int span, double u, int p, const double *knots, double *N, double *dN,
+                          double *work)
+{
+    if (p == 0) {
+        N[0] = 1.0;
+        dN[0] = 0.0;
+        return;
+    }
+    double *lower = work, *left = work + (p + 1), *right = left + (p + 1);
+    basis_in(span, u, p - 1, knots, lower, left, right);
+    double t_next = 0.0;
+    for (int j = p; j >= 0; j--) {
+        double t_j = j >= 1 ? lower[j - 1] / (knots[span + j] - knots[span + j - p]) : 0.0;
+        N[j] = (u - knots[span - p + j]) * t_j + (knots[span + j + 1] - u) * t_next;
+        dN[j] = p * (t_j - t_next);
+        t_next = t_j;
+    }
+}
+
+/* ------------------------------------------------------------------ */
+/* Evaluation                                                           */
+/* ------------------------------------------------------------------ */
+
+void sc_curve_domain(const sc_curve *c, double *t0, double *t1)
+{
+    *t0 = c->knots[c->degree];
+    *t1 = c->knots[c->ncp];
+}
+
+void sc_surface_domain(const sc_surface *s, double *u0, double *u1, double *v0, double *v1)
+{
+    *u0 = s->knots_u[s->deg_u];
+    *u1 = s->knots_u[s->nu];
+    *v0 = s->knots_v[s->deg_v];
+    *v1 = s->knots_v[s->nv];
+}
+
+void sc_curve_eval(const sc_curve *c, double u, double *point, double *d1)
+{
+    enum { STACK_WORK = 5 * STACK_ORDER + 1 };
+    double stack[STACK_WORK];
+    int p = c->degree, order = p + 1, stride = c->dim + 1;
+    double *buf = scratch(stack, STACK_WORK, 5 * (size_t)order + 1);
+    double *ders = buf, *work = buf + 2 * order;
+    u = clamp_to(u, c->knots[p], c->knots[c->ncp]);
+    int span = sc_find_span(p, c->knots, c->ncp, u);
+    if (d1)
+        basis_with_d1(span, u, p, c->knots, ders, ders + order, work);
+    else
+        basis_in(span, u, p, c->knots, ders, work, work + order);
+    double A[4] = {0}, dA[4] = {0};
+    for (int j = 0; j <= p; j++) {
+        const double *P = c->cp + (size_t)(span - p + j) * (size_t)stride;
+        for (int k = 0; k < stride; k++) {
+            A[k] += ders[j] * P[k];
+            if (d1)
+                dA[k] += ders[order + j] * P[k];
+        }
+    }
+    double w = A[c->dim], dw = dA[c->dim];
+    for (int k = 0; k < c->dim; k++) {
+        point[k] = A[k] / w;
+        if (d1)
+            d1[k] = (dA[k] - dw * point[k]) / w;
+    }
+    scratch_release(buf, stack);
+}
+
+/* Homogeneous sums of a surface at (u, v): the point and, when `order_needed`
+ * is 1, the partials and the mixed partial. */
+typedef struct homog_ders {
+    double S[4], Su[4], Sv[4], Suv[4];
+} homog_ders;
+
+static void surface_homog(const sc_surface *s, double u, double v, int order_needed,
+                          homog_ders *h)
+{
+    int p = s->deg_u, q = s->deg_v;
+    size_t work_u = 5 * (size_t)(p + 1) + 1, work_v = 5 * (size_t)(q + 1) + 1;
+    enum { STACK_WORK = 2 * (5 * STACK_ORDER + 1) };
+    double stack[STACK_WORK];
+    double *buf = scratch(stack, STACK_WORK, work_u + work_v);
+    double *Nu = buf, *Nv = buf + work_u;
+    double u0, u1, v0, v1;
+    sc_surface_domain(s, &u0, &u1, &v0, &v1);
+    u = clamp_to(u, u0, u1);
+    v = clamp_to(v, v0, v1);
+    int span_u = sc_find_span(p, s->knots_u, s->nu, u);
+    int span_v = sc_find_span(q, s->knots_v, s->nv, v);
+    double *work_pu = Nu + 2 * (p + 1), *work_pv = Nv + 2 * (q + 1);
+    if (order_needed) {
+        basis_with_d1(span_u, u, p, s->knots_u, Nu, Nu + p + 1, work_pu);
+        basis_with_d1(span_v, v, q, s->knots_v, Nv, Nv + q + 1, work_pv);
+    } else {
+        basis_in(span_u, u, p, s->knots_u, Nu, work_pu, work_pu + p + 1);
+        basis_in(span_v, v, q, s->knots_v, Nv, work_pv, work_pv + q + 1);
+    }
+    memset(h, 0, sizeof *h);
+    for (int l = 0; l <= q; l++) {
+        const double *row = s->cp + 4 * ((size_t)(span_v - q + l) * (size_t)s->nu +
+                                         (size_t)(span_u - p));
+        double t0[4] = {0}, t1[4] = {0};
+        for (int k = 0; k <= p; k++) {
+            const double *P = row + 4 * k;
+            for (int c = 0; c < 4; c++)
+                t0[c] += Nu[k] * P[c];
+            if (order_needed)
+                for (int c = 0; c < 4; c++)
+                    t1[c] += Nu[p + 1 + k] * P[c];
+        }
+        for (int c = 0; c < 4; c++)
+            h->S[c] += Nv[l] * t0[c];
+        if (order_needed) {
+            double dv = Nv[q + 1 + l];
+            for (int c = 0; c < 4; c++) {
+                h->Su[c] += Nv[l] * t1[c];
+                h->Sv[c] += dv * t0[c];
+                h->Suv[c] += dv * t1[c];
+            }
+        }
+    }
+    scratch_release(buf, stack);
+}
+
+/* Euclidean point, partials and mixed partial from the homogeneous sums by
+ * the quotient rule. */
+static void surface_euclid(const homog_ders *h, double p[3], double su[3], double sv[3],
+                           double suv[3])
+{
+    double w = h->S[3];
+    for (int c = 0; c < 3; c++)
+        p[c] = h->S[c] / w;
+    if (!su)
+        return;
+    for (int c = 0; c < 3; c++) {
+        su[c] = (h->Su[c] - h->Su[3] * p[c]) / w;
+        sv[c] = (h->Sv[c] - h->Sv[3] * p[c]) / w;
+    }
+    if (!suv)
+        return;
+    for (int c = 0; c < 3; c++)
+        suv[c] = (h->Suv[c] - h->Suv[3] * p[c] - h->Su[3] * sv[c] - h->Sv[3] * su[c]) / w;
+}
+
+void sc_surface_eval(const sc_surface *s, double u, double v, double p[3], double su[3],
+                     double sv[3])
+{
+    homog_ders h;
+    int want = su || sv;
+    surface_homog(s, u, v, want, &h);
+    double su_buf[3], sv_buf[3];
+    surface_euclid(&h, p, want ? (su ? su : su_buf) : NULL, sv ? sv : sv_buf, NULL);
+}
+
+void sc_surface_eval_world(const sc_surface *s, double u, double v, double p[3], double su[3],
+                           double sv[3])
+{
+    sc_surface_eval(s, u, v, p, su, sv);
+    sc_xform_point(s->xform, p, p);
+    if (su)
+        sc_xform_vector(s->xform, su, su);
+    if (sv)
+        sc_xform_vector(s->xform, sv, sv);
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double norm3(const double a[3]) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+/* su × sv counts as a normal when its sine-weighted length is not lost in
+ * the rounding of the larger partial: below this ratio the partials are
+ * (nearly) parallel or one of them has (nearly) vanished. The threshold
+ * balances the cancellation error of a tiny partial (~1e-16 / |partial|)
+ * against the O(distance) error of the limit normal used instead. */
+static const double NORMAL_SINE_MIN = 1e-8;
+
+/* A partial this much shorter than the other counts as vanished (the
+ * surface collapses along an edge through this point). */
+static const double COLLAPSED_RATIO = 1e-6;
+
+static int unit_if_clear(const double n[3], double scale, double out[3])
+{
+    double len = norm3(n);
+    if (!(len > NORMAL_SINE_MIN * scale) || !isfinite(len))
+        return -1;
+    for (int c = 0; c < 3; c++)
+        out[c] = n[c] / len;
+    return 0;
+}
+
+int sc_surface_normal(const sc_surface *s, double u, double v, double n[3])
+{
+    double u0, u1, v0, v1;
+    sc_surface_domain(s, &u0, &u1, &v0, &v1);
+    u = clamp_to(u, u0, u1);
+    v = clamp_to(v, v0, v1);
+    homog_ders h;
+    double p[3], su[3], sv[3], suv[3], c[3];
+    surface_homog(s, u, v, 1, &h);
+    surface_euclid(&h, p, su, sv, suv);
+    double lu = norm3(su), lv = norm3(sv), big = lu > lv ? lu : lv;
+    cross3(su, sv, c);
+    if (unit_if_clear(c, big * big, n) == 0)
+        return 0;
+
+    /* A collapsed edge: along v = v* the partial su vanishes, so near it
+     * su ≈ (v − v*) suv and su × sv ≈ (v − v*) suv × sv; the factor's sign
+     * is + on the lower edge and − on the upper one (and symmetrically for
+     * a vanishing sv). This is the exact limit at the pole. */
+    double lm = norm3(suv), small = lu < lv ? lu : lv;
+    int collapsed = small <= COLLAPSED_RATIO * big;
+    if (collapsed && lu < lv) {
+        double sign = (v - v0 <= v1 - v) ? 1.0 : -1.0;
+        cross3(suv, sv, c);
+        for (int k = 0; k < 3; k++)
+            c[k] *= sign;
+        if (unit_if_clear(c, lm * lv, n) == 0)
+            return 0;
+    } else if (collapsed) {
+        double sign = (u - u0 <= u1 - u) ? 1.0 : -1.0;
+        cross3(su, suv, c);
+        for (int k = 0; k < 3; k++)
+            c[k] *= sign;
+        if (unit_if_clear(c, lu * lm, n) == 0)
+            return 0;
+    }
+
+    /* Corners where both partials vanish, parallel partials, or vanishing
+     * second derivatives: step towards the domain's centre until the
+     * normal is well defined. */
+    double uc = 0.5 * (u0 + u1), vc = 0.5 * (v0 + v1);
+    double f = 1e-7;
+    for (int step = 0; step < 7; step++, f *= 10) {
+        double ui = u + f * (uc - u), vi = v + f * (vc - v);
+        surface_homog(s, ui, vi, 1, &h);
+        surface_euclid(&h, p, su, sv, NULL);
+        lu = norm3(su);
+        lv = norm3(sv);
+        big = lu > lv ? lu : lv;
+        cross3(su, sv, c);
+        if (unit_if_clear(c, big * big, n) == 0)
+            return 0;
+    }
+    n[0] = n[1] = 0;
+    n[2] = 1;
+    return -1;
+}
+
+/* ------------------------------------------------------------------ */
+/* Curve algorithms on raw arrays (stride doubles per point), so that    */
+/* surfaces can run them on their rows and columns.                      */
+/* ------------------------------------------------------------------ */
+
+static size_t knot_count(const sc_curve *c) { return (size_t)(c->ncp + c->degree + 1); }
+
+static void copy_point(double *dst, const double *src, int stride)
+{
+    memcpy(dst, src, sizeof(double) * (size_t)stride);
+}
+
+/* dst = a·x + (1 − a)·y */
+static void blend_point(double *dst, double a, const double *x, const double *y, int stride)
+{
+    for (int k = 0; k < stride; k++)
+        dst[k] = a * x[k] + (1.0 - a) * y[k];
+}
+
+static int multiplicity(const double *knots, int nknots, double u)
+{
+    int m = 0;
+    for (int i = 0; i < nknots; i++)
+        if (knots[i] == u)
+            m++;
+    return m;
+}
+
+/* A5.1: inserts u `times` times (limited so that the multiplicity does not
+ * exceed the degree). */
+void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out)
+{
+    int p = c->degree, n = c->ncp - 1, stride = c->dim + 1;
+    double t0, t1;
+    sc_curve_domain(c, &t0, &t1);
+    int s = multiplicity(c->knots, (int)knot_count(c), u);
+    int r = times < p - s ? times : p - s;
+    if (!(u > t0 && u < t1) || r <= 0) {
+        sc_curve_copy(out, c);
+        return;
+    }
+    int k = sc_find_span(p, c->knots, c->ncp, u);
+    sc_curve_alloc(out, c->dim, p, c->ncp + r);
+    const double *U = c->knots;
+    double *UQ = out->knots;
+    int m = n + p + 1;
+    for (int i = 0; i <= k; i++)
+        UQ[i] = U[i];
+    for (int i = 1; i <= r; i++)
+        UQ[k + i] = u;
+    for (int i = k + 1; i <= m; i++)
+        UQ[i + r] = U[i];
+#define PW(i) (c->cp + (size_t)(i) * (size_t)stride)
+#define QW(i) (out->cp + (size_t)(i) * (size_t)stride)
+    for (int i = 0; i <= k - p; i++)
+        copy_point(QW(i), PW(i), stride);
+    for (int i = k - s; i <= n; i++)
+        copy_point(QW(i + r), PW(i), stride);
+    double stack[STACK_ORDER * 4];
+    double *R = scratch(stack, STACK_ORDER * 4, (size_t)(p + 1) * (size_t)stride);
+    for (int i = 0; i <= p - s; i++)
+        copy_point(R + i * stride, PW(k - p + i), stride);
+    int L = 0;
+    for (int j = 1; j <= r; j++) {
+        L = k - p + j;
+        for (int i = 0; i <= p - j - s; i++) {
+            double alpha = (u - U[L + i]) / (U[i + k + 1] - U[L + i]);
+            blend_point(R + i * stride, alpha, R + (i + 1) * stride, R + i * stride, stride);
+        }
+        copy_point(QW(L), R, stride);
+        copy_point(QW(k + r - j - s), R + (p - j - s) * stride, stride);
+    }
+    for (int i = L + 1; i < k - s; i++)
+        copy_point(QW(i), R + (i - L) * stride, stride);
+#undef PW
+#undef QW
+    scratch_release(R, stack);
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* A5.4: inserts all of x at once. Values at or outside the domain's ends
+ * are ignored (the clamped ends already have full multiplicity), the rest
+ * sorted; x need not be ordered. */
+void sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out)
+{
+    double t0, t1;
+    sc_curve_domain(c, &t0, &t1);
+    double *X = sc_alloc((size_t)(nx > 0 ? nx : 1), sizeof(double));
+    int r = 0;
+    for (int i = 0; i < nx; i++)
+        if (x[i] > t0 && x[i] < t1)
+            X[r++] = x[i];
+    if (r == 0) {
+        free(X);
+        sc_curve_copy(out, c);
+        return;
+    }
+    qsort(X, (size_t)r, sizeof(double), compare_double);
+    int p = c->degree, n = c->ncp - 1, m = n + p + 1, stride = c->dim + 1;
+    const double *U = c->knots;
+    sc_curve_alloc(out, c->dim, p, c->ncp + r);
+    double *Ubar = out->knots;
+#define PW(i) (c->cp + (size_t)(i) * (size_t)stride)
+#define QW(i) (out->cp + (size_t)(i) * (size_t)stride)
+    int a = sc_find_span(p, U, c->ncp, X[0]);
+    int b = sc_find_span(p, U, c->ncp, X[r - 1]) + 1;
+    for (int j = 0; j <= a - p; j++)
+        copy_point(QW(j), PW(j), stride);
+    for (int j = b - 1; j <= n; j++)
+        copy_point(QW(j + r), PW(j), stride);
+    for (int j = 0; j <= a; j++)
+        Ubar[j] = U[j];
+    for (int j = b + p; j <= m; j++)
+        Ubar[j + r] = U[j];
+    /* Sweep from the right: knots of U above the next new knot shift
+     * right by the number of new knots still to place; each new knot
+     * blends p points. */
+    int i = b + p - 1, k = b + p + r - 1;
+    for (int j = r - 1; j >= 0; j--) {
+        while (X[j] <= U[i] && i > a) {
+            copy_point(QW(k - p - 1), PW(i - p - 1), stride);
+            Ubar[k] = U[i];
+            k--;
+            i--;
+        }
+        copy_point(QW(k - p - 1), QW(k - p), stride);
+        for (int l = 1; l <= p; l++) {
+            int ind = k - p + l;
+            double alpha = Ubar[k + l] - X[j];
+            if (alpha == 0.0) {
+                copy_point(QW(ind - 1), QW(ind), stride);
+            } else {
+                alpha /= Ubar[k + l] - U[i - p + l];
+                blend_point(QW(ind - 1), alpha, QW(ind - 1), QW(ind), stride);
+            }
+        }
+        Ubar[k] = X[j];
+        k--;
+    }
+#undef PW
+#undef QW
+    free(X);
+}
+
+/* The knots to insert so that every interior knot has multiplicity at
+ * least the degree: the curve is then a chain of Bézier segments. Returns
+ * how many were written to x (which holds (ncp − degree − 1)·degree). */
+static int bezier_refinement(int degree, const double *knots, int ncp, double *x)
+{
+    int count = 0;
+    int i = degree + 1;
+    while (i < ncp) {
+        int mult = 1;
+        while (i + mult < ncp && knots[i + mult] == knots[i])
+            mult++;
+        for (int k = mult; k < degree; k++)
+            x[count++] = knots[i];
+        i += mult;
+    }
+    return count;
+}
+
+static void refine_to_bezier(const sc_curve *c, sc_curve *out)
+{
+    double *x = sc_alloc((size_t)(c->ncp) * (size_t)c->degree + 1, sizeof(double));
+    int nx = bezier_refinement(c->degree, c->knots, c->ncp, x);
+    sc_curve_refine(c, x, nx, out);
+    free(x);
+}
+
+/* Spans that are not empty: with every interior multiplicity >= degree,
+ * the points of span k are cp[k − degree .. k], in Bernstein form. */
+static int nonempty_spans(int degree, const double *knots, int ncp, int *spans)
+{
+    int count = 0;
+    for (int k = degree; k < ncp; k++)
+        if (knots[k] < knots[k + 1])
+            spans[count++] = k;
+    return count;
+}
+
+void sc_curve_to_bezier(const sc_curve *c, sc_curve **segments, int *count)
+{
+    sc_curve refined;
+    refine_to_bezier(c, &refined);
+    int p = c->degree, stride = c->dim + 1;
+    int *spans = sc_alloc((size_t)refined.ncp, sizeof(int));
+    int nseg = nonempty_spans(p, refined.knots, refined.ncp, spans);
+    sc_curve *segs = sc_alloc((size_t)nseg, sizeof(sc_curve));
+    for (int s = 0; s < nseg; s++) {
+        int k = spans[s];
+        sc_curve_alloc(&segs[s], c->dim, p, p + 1);
+        for (int i = 0; i <= p; i++) {
+            segs[s].knots[i] = refined.knots[k];
+            segs[s].knots[p + 1 + i] = refined.knots[k + 1];
+        }
+        memcpy(segs[s].cp, refined.cp + (size_t)(k - p) * (size_t)stride,
+               sizeof(double) * (size_t)(p + 1) * (size_t)stride);
+    }
+    free(spans);
+    sc_curve_free(&refined);
+    *segments = segs;
+    *count = nseg;
+}
+
+void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right)
+{
+    double t0, t1;
+    sc_curve_domain(c, &t0, &t1);
+    assert(t > t0 && t < t1);
+    int p = c->degree, stride = c->dim + 1;
+    sc_curve full;
+    sc_curve_insert_knot(c, t, p, &full);
+    /* With t of multiplicity p (at least), the curve passes through the
+     * control point just before t's first knot: both halves share it. */
+    int nk = full.ncp + p + 1, first = 0;
+    while (first < nk && full.knots[first] < t)
+        first++;
+    int last = first;
+    while (last + 1 < nk && full.knots[last + 1] == t)
+        last++;
+    int mult = last - first + 1;
+    int left_ncp = first;
+    /* A knot already at multiplicity degree+1 separates the halves
+     * without a shared point. */
+    int right_start = mult > p ? first : first - 1;
+    int right_ncp = full.ncp - right_start;
+    sc_curve_alloc(left, c->dim, p, left_ncp);
+    sc_curve_alloc(right, c->dim, p, right_ncp);
+    memcpy(left->knots, full.knots, sizeof(double) * (size_t)first);
+    for (int i = 0; i <= p; i++)
+        left->knots[first + i] = t;
+    for (int i = 0; i <= p; i++)
+        right->knots[i] = t;
+    memcpy(right->knots + p + 1, full.knots + last + 1,
+           sizeof(double) * (size_t)(nk - last - 1));
+    memcpy(left->cp, full.cp, sizeof(double) * (size_t)left_ncp * (size_t)stride);
+    memcpy(right->cp, full.cp + (size_t)right_start * (size_t)stride,
+           sizeof(double) * (size_t)right_ncp * (size_t)stride);
+    sc_curve_free(&full);
+}
+
+static double binomial(int n, int k)
+{
+    double b = 1.0;
+    for (int i = 1; i <= k; i++)
+        b = b * (n - k + i) / i;
+    return b;
+}
+
+/* Removes one copy of the knot U[r] (multiplicity s, U[r] < U[r+1]) from a
+ * curve known not to change by it, e.g. one just assembled from elevated
+ * Bézier segments. The p − s new points follow from the knot insertion
+ * equations P_i = α_i Q_i + (1 − α_i) Q_{i−1}, solved from the left for the
+ * first half and from the right for the second (A5.8), which keeps the
+ * divisions by α and 1 − α away from small values. */
+static void remove_knot_once(double *U, double *P, int *ncp, int stride, int p, int r, int s)
+{
+    int n = *ncp - 1, unknowns = p - s;
+    double u = U[r];
+    double stack[STACK_ORDER * 4];
+    double *Q = scratch(stack, STACK_ORDER * 4, (size_t)(unknowns + 2) * (size_t)stride);
+    /* Q[k + 1] is the new point of index r − p + k; Q[0] and Q[unknowns+1]
+     * are the unchanged neighbours. */
+    copy_point(Q, P + (size_t)(r - p - 1) * (size_t)stride, stride);
+    copy_point(Q + (size_t)(unknowns + 1) * (size_t)stride,
+               P + (size_t)(r - s + 1) * (size_t)stride, stride);
+    int from_left = (unknowns + 1) / 2;
+    for (int k = 0; k < from_left; k++) {
+        int i = r - p + k;
+        double alpha = (u - U[i]) / (U[i + p + 1] - U[i]);
+        const double *Pi = P + (size_t)i * (size_t)stride;
+        double *q = Q + (size_t)(k + 1) * (size_t)stride;
+        for (int c = 0; c < stride; c++)
+            q[c] = (Pi[c] - (1.0 - alpha) * q[c - stride]) / alpha;
+    }
+    for (int k = unknowns - 1; k >= from_left; k--) {
+        int i = r - p + k + 1;
+        double alpha = (u - U[i]) / (U[i + p + 1] - U[i]);
+        const double *Pi = P + (size_t)i * (size_t)stride;
+        double *q = Q + (size_t)(k + 1) * (size_t)stride;
+        for (int c = 0; c < stride; c++)
+            q[c] = (Pi[c] - alpha * q[c + stride]) / (1.0 - alpha);
+    }
+    memcpy(P + (size_t)(r - p) * (size_t)stride, Q + stride,
+           sizeof(double) * (size_t)unknowns * (size_t)stride);
+    memmove(P + (size_t)(r - s) * (size_t)stride, P + (size_t)(r - s + 1) * (size_t)stride,
+            sizeof(double) * (size_t)(n - r + s) * (size_t)stride);
+    memmove(U + r, U + r + 1, sizeof(double) * (size_t)(n + p + 1 - r));
+    *ncp = n;
+    scratch_release(Q, stack);
+}
+
+/* Degree elevation: split into Bézier segments, raise each by
+ * Q_i = Σ_j C(p,j) C(t,i−j) / C(p+t,i) P_j, chain them with every interior
+ * knot at multiplicity p+t, then remove each knot down to its original
+ * multiplicity + t (the continuity the original curve had). */
+void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out)
+{
+    if (times <= 0) {
+        sc_curve_copy(out, c);
+        return;
+    }
+    int p = c->degree, ph = p + times, stride = c->dim + 1;
+    sc_curve refined;
+    refine_to_bezier(c, &refined);
+    int *spans = sc_alloc((size_t)refined.ncp, sizeof(int));
+    int nseg = nonempty_spans(p, refined.knots, refined.ncp, spans);
+
+    /* Upper bound: every segment with its own ph+1 points. */
+    size_t cap = (size_t)nseg * (size_t)(ph + 1);
+    double *P = sc_alloc(cap * (size_t)stride, sizeof(double));
+    double *U = sc_alloc(cap + (size_t)ph + 1, sizeof(double));
+    double *coef = sc_alloc((size_t)(ph + 1) * (size_t)(p + 1), sizeof(double));
+    for (int i = 0; i <= ph; i++)
+        for (int j = 0; j <= p; j++)
+            if (j <= i && i - j <= times)
+                coef[i * (p + 1) + j] = binomial(p, j) * binomial(times, i - j) / binomial(ph, i);
+
+    int ncp = 0, nk = 0;
+    for (int i = 0; i <= ph; i++)
+        U[nk++] = refined.knots[spans[0]];
+    for (int sgi = 0; sgi < nseg; sgi++) {
+        int k = spans[sgi];
+        const double *B = refined.cp + (size_t)(k - p) * (size_t)stride;
+        /* A breakpoint of multiplicity degree+1 (a possible jump) keeps
+         * both end points; otherwise consecutive segments share one. */
+        int first = 0;
+        if (sgi > 0) {
+            int mult = multiplicity(refined.knots, refined.ncp + p + 1, refined.knots[k]);
+            first = mult > p ? 0 : 1;
+            for (int i = 0; i < (mult > p ? ph + 1 : ph); i++)
+                U[nk++] = refined.knots[k];
+        }
+        for (int i = first; i <= ph; i++) {
+            double *q = P + (size_t)ncp * (size_t)stride;
+            for (int d = 0; d < stride; d++) {
+                double sum = 0.0;
+                for (int j = 0; j <= p; j++)
+                    sum += coef[i * (p + 1) + j] * B[(size_t)j * (size_t)stride + (size_t)d];
+                q[d] = sum;
+            }
+            ncp++;
+        }
+    }
+    for (int i = 0; i <= ph; i++)
+        U[nk++] = refined.knots[spans[nseg - 1] + 1];
+
+    /* Knot removal, breakpoint by breakpoint. */
+    for (int sgi = 1; sgi < nseg; sgi++) {
+        double u = refined.knots[spans[sgi]];
+        int target = multiplicity(c->knots, (int)knot_count(c), u) + times;
+        for (;;) {
+            int r = 0, mult = 0;
+            for (int i = 0; i < ncp + ph + 1; i++)
+                if (U[i] == u) {
+                    r = i;
+                    mult++;
+                }
+            if (mult <= target)
+                break;
+            remove_knot_once(U, P, &ncp, stride, ph, r, mult);
+        }
+    }
+    sc_curve_alloc(out, c->dim, ph, ncp);
+    memcpy(out->knots, U, sizeof(double) * (size_t)(ncp + ph + 1));
+    memcpy(out->cp, P, sizeof(double) * (size_t)ncp * (size_t)stride);
+    free(coef);
+    free(U);
+    free(P);
+    free(spans);
+    sc_curve_free(&refined);
+}
+
+/* ------------------------------------------------------------------ */
+/* Surfaces: the curve algorithms run on each row (dir 0, along u) or     */
+/* column (dir 1, along v) of homogeneous control points (A5.3, A5.5).   */
+/* ------------------------------------------------------------------ */
+
+typedef enum curve_job_kind { JOB_INSERT, JOB_REFINE, JOB_SPLIT, JOB_ELEVATE } curve_job_kind;
+
+typedef struct curve_job {
+    curve_job_kind kind;
+    double t;
+    int times;
+    const double *x;
+    int nx;
+} curve_job;
+
+static int job_outputs(const curve_job *job) { return job->kind == JOB_SPLIT ? 2 : 1; }
+
+static void run_job(const curve_job *job, const sc_curve *in, sc_curve out[2])
+{
+    switch (job->kind) {
+    case JOB_INSERT: sc_curve_insert_knot(in, job->t, job->times, &out[0]); break;
+    case JOB_REFINE: sc_curve_refine(in, job->x, job->nx, &out[0]); break;
+    case JOB_SPLIT: sc_curve_split(in, job->t, &out[0], &out[1]); break;
+    case JOB_ELEVATE: sc_curve_elevate(in, job->times, &out[0]); break;
+    }
+}
+
+/* Index of control point (i along dir, j across) in the surface array. */
+static size_t line_index(int dir, int nu, int along, int across)
+{
+    return dir == 0 ? (size_t)across * (size_t)nu + (size_t)along
+                    : (size_t)along * (size_t)nu + (size_t)across;
+}
+
+static void surface_run_job(const sc_surface *s, int dir, const curve_job *job, sc_surface *out)
+{
+    int nouts = job_outputs(job);
+    int along_n = dir == 0 ? s->nu : s->nv, across_n = dir == 0 ? s->nv : s->nu;
+    sc_curve line;
+    line.dim = 3;
+    line.degree = dir == 0 ? s->deg_u : s->deg_v;
+    line.ncp = along_n;
+    line.knots = dir == 0 ? s->knots_u : s->knots_v;
+    line.cp = sc_alloc((size_t)along_n * 4, sizeof(double));
+    for (int j = 0; j < across_n; j++) {
+        for (int i = 0; i < along_n; i++)
+            copy_point(line.cp + 4 * i, s->cp + 4 * line_index(dir, s->nu, i, j), 4);
+        sc_curve res[2];
+        run_job(job, &line, res);
+        for (int o = 0; o < nouts; o++) {
+            sc_surface *dst = &out[o];
+            if (j == 0) {
+                *dst = *s;
+                dst->nloops = 0;
+                dst->loops = NULL;
+                int nu = dir == 0 ? res[o].ncp : s->nu, nv = dir == 0 ? s->nv : res[o].ncp;
+                int du = dir == 0 ? res[o].degree : s->deg_u;
+                int dv = dir == 0 ? s->deg_v : res[o].degree;
+                sc_surface_alloc(dst, du, dv, nu, nv);
+                double *kn = dir == 0 ? dst->knots_u : dst->knots_v;
+                memcpy(kn, res[o].knots, sizeof(double) * knot_count(&res[o]));
+                if (dir == 0)
+                    memcpy(dst->knots_v, s->knots_v, sizeof(double) * (size_t)(s->nv + s->deg_v + 1));
+                else
+                    memcpy(dst->knots_u, s->knots_u, sizeof(double) * (size_t)(s->nu + s->deg_u + 1));
+            }
+            for (int i = 0; i < res[o].ncp; i++)
+                copy_point(dst->cp + 4 * line_index(dir, dst->nu, i, j), res[o].cp + 4 * i, 4);
+            sc_curve_free(&res[o]);
+        }
+    }
+    free(line.cp);
+}
+
+void sc_surface_insert_knot(const sc_surface *s, int dir, double t, int times, sc_surface *out)
+{
+    curve_job job = {.kind = JOB_INSERT, .t = t, .times = times};
+    surface_run_job(s, dir, &job, out);
+}
+
+void sc_surface_refine(const sc_surface *s, int dir, const double *x, int nx, sc_surface *out)
+{
+    curve_job job = {.kind = JOB_REFINE, .x = x, .nx = nx};
+    surface_run_job(s, dir, &job, out);
+}
+
+void sc_surface_split(const sc_surface *s, int dir, double t, sc_surface *lo, sc_surface *hi)
+{
+    sc_surface halves[2];
+    curve_job job = {.kind = JOB_SPLIT, .t = t};
+    surface_run_job(s, dir, &job, halves);
+    *lo = halves[0];
+    *hi = halves[1];
+}
+
+void sc_surface_elevate(const sc_surface *s, int dir, int times, sc_surface *out)
+{
+    curve_job job = {.kind = JOB_ELEVATE, .times = times};
+    surface_run_job(s, dir, &job, out);
+}
+
+static void surface_refine_to_bezier(const sc_surface *s, int dir, sc_surface *out)
+{
+    int deg = dir == 0 ? s->deg_u : s->deg_v, n = dir == 0 ? s->nu : s->nv;
+    const double *knots = dir == 0 ? s->knots_u : s->knots_v;
+    double *x = sc_alloc((size_t)n * (size_t)deg + 1, sizeof(double));
+    int nx = bezier_refinement(deg, knots, n, x);
+    sc_surface_refine(s, dir, x, nx, out);
+    free(x);
+}
+
+void sc_surface_to_bezier(const sc_surface *s, sc_bezier_patch **patches, int *count)
+{
+    sc_surface ru, ruv;
+    surface_refine_to_bezier(s, 0, &ru);
+    surface_refine_to_bezier(&ru, 1, &ruv);
+    sc_surface_free(&ru);
+    int p = s->deg_u, q = s->deg_v;
+    int *spans_u = sc_alloc((size_t)ruv.nu, sizeof(int));
+    int *spans_v = sc_alloc((size_t)ruv.nv, sizeof(int));
+    int nsu = nonempty_spans(p, ruv.knots_u, ruv.nu, spans_u);
+    int nsv = nonempty_spans(q, ruv.knots_v, ruv.nv, spans_v);
+    sc_bezier_patch *out = sc_alloc((size_t)nsu * (size_t)nsv, sizeof(sc_bezier_patch));
+    for (int b = 0; b < nsv; b++)
+        for (int a = 0; a < nsu; a++) {
+            sc_bezier_patch *bp = &out[b * nsu + a];
+            int ku = spans_u[a], kv = spans_v[b];
+            bp->surface = -1;
+            bp->deg_u = p;
+            bp->deg_v = q;
+            bp->u0 = ruv.knots_u[ku];
+            bp->u1 = ruv.knots_u[ku + 1];
+            bp->v0 = ruv.knots_v[kv];
+            bp->v1 = ruv.knots_v[kv + 1];
+            bp->cp = sc_alloc((size_t)(p + 1) * (size_t)(q + 1) * 4, sizeof(double));
+            for (int j = 0; j <= q; j++)
+                for (int i = 0; i <= p; i++)
+                    copy_point(bp->cp + 4 * (j * (p + 1) + i),
+                               ruv.cp + 4 * ((size_t)(kv - q + j) * (size_t)ruv.nu +
+                                             (size_t)(ku - p + i)),
+                               4);
+        }
+    free(spans_u);
+    free(spans_v);
+    sc_surface_free(&ruv);
+    *patches = out;
+    *count = nsu * nsv;
+}
+
+void sc_bezier_patch_free(sc_bezier_patch *p)
+{
+    free(p->cp);
+    p->cp = NULL;
+}

@@ -1,0 +1,404 @@
+/* test_loops.c — trim-loop validation on loops built by hand, with known
+ * answers: gaps below 1e-9 of the domain closed silently, up to 1e-3
+ * repaired with a straight segment, larger ones dropped; self-crossing
+ * loops (a bowtie, a figure-eight curve, two triangles crossing at a shared
+ * corner) dropped; valid loops left bit for bit as they were. The warnings
+ * are captured through the logger and must name the surface and the loop. */
+#include "test.h"
+
+#include <stdlib.h>
+
+#include "nurbs.h"
+
+typedef struct log_capture {
+    int count;
+    char text[8192];
+} log_capture;
+
+static void capture(sc_log_level level, const char *message, void *user)
+{
+    log_capture *cap = user;
+    if (level < SC_LOG_WARN)
+        return;
+    cap->count++;
+    size_t used = strlen(cap->text);
+    snprintf(cap->text + used, sizeof cap->text - used, "%s\n", message);
+}
+
+static void validate(sc_scene *scene, log_capture *cap)
+{
+    memset(cap, 0, sizeof *cap);
+    sc_set_logger(capture, cap);
+    sc_scene_validate_loops(scene);
+    sc_set_logger(NULL, NULL);
+}
+
+/* Two flat surfaces on the domain [0, 2] × [0, 1] (domain size 2): the
+ * loops under test go on the second, named "plate". */
+static sc_surface *make_scene(sc_scene *scene)
+{
+    sc_scene_init(scene);
+    for (int k = 0; k < 2; k++) {
+        sc_surface *s = sc_scene_add_surface(scene);
+        sc_surface_alloc(s, 1, 1, 2, 2);
+        const double ku[4] = {0, 0, 2, 2}, kv[4] = {0, 0, 1, 1};
+        memcpy(s->knots_u, ku, sizeof ku);
+        memcpy(s->knots_v, kv, sizeof kv);
+        const double cp[16] = {0, 0, 0, 1, 2, 0, 0, 1, 0, 1, 0, 1, 2, 1, 0, 1};
+        memcpy(s->cp, cp, sizeof cp);
+    }
+    snprintf(scene->surfaces[1].name, sizeof scene->surfaces[1].name, "plate");
+    return &scene->surfaces[1];
+}
+
+static sc_loop *add_loop(sc_surface *s, int is_hole, int ncurves)
+{
+    s->loops = sc_realloc(s->loops, (size_t)s->nloops + 1, sizeof(sc_loop));
+    sc_loop *l = &s->loops[s->nloops++];
+    l->is_hole = is_hole;
+    l->ncurves = ncurves;
+    l->curves = sc_alloc((size_t)ncurves, sizeof(sc_curve));
+    return l;
+}
+
+static void line(sc_curve *c, double x0, double y0, double x1, double y1)
+{
+    sc_curve_alloc(c, 2, 1, 2);
+    const double k[4] = {0, 0, 1, 1}, cp[6] = {x0, y0, 1, x1, y1, 1};
+    memcpy(c->knots, k, sizeof k);
+    memcpy(c->cp, cp, sizeof cp);
+}
+
+/* A closed polygon of lines; the end of side `gap_after` is moved by
+ * (gap, 0) so that it misses the next side's start. */
+static void polygon_loop(sc_surface *s, int is_hole, const double (*xy)[2], int n,
+                         int gap_after, double gap)
+{
+    sc_loop *l = add_loop(s, is_hole, n);
+    for (int k = 0; k < n; k++) {
+        const double *a = xy[k], *b = xy[(k + 1) % n];
+        line(&l->curves[k], a[0], a[1], b[0] + (k == gap_after ? gap : 0), b[1]);
+    }
+}
+
+static const double square[4][2] = {{0.5, 0.25}, {1.5, 0.25}, {1.5, 0.75}, {0.5, 0.75}};
+
+static void curve_end(const sc_curve *c, int last, double p[2])
+{
+    const double *P = c->cp + (last ? 3 * (c->ncp - 1) : 0);
+    p[0] = P[0] / P[2];
+    p[1] = P[1] / P[2];
+}
+
+TEST(loops_tiny_gap_closed_silently)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    /* 2e-11 on a domain of size 2: a gap of 1e-11 of the domain. */
+    polygon_loop(s, 0, square, 4, 1, 2e-11);
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(cap.count, 0);
+    CHECK_INT(scene.repaired_gaps, 0);
+    CHECK_INT(scene.dropped_loops, 0);
+    CHECK_INT(s->nloops, 1);
+    CHECK_INT(s->loops[0].ncurves, 4);
+    double a[2], b[2];
+    curve_end(&s->loops[0].curves[1], 1, a);
+    curve_end(&s->loops[0].curves[2], 0, b);
+    /* Both moved to the midpoint of the gap. */
+    CHECK_NEAR(a[0], 1.5 + 1e-11, 1e-15);
+    CHECK_NEAR(b[0], 1.5 + 1e-11, 1e-15);
+    CHECK_NEAR(a[1], 0.75, 0);
+    sc_scene_free(&scene);
+}
+
+TEST(loops_small_gap_repaired_with_a_segment)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, square, 4, -1, 0);
+    /* The hole, loop 1: a gap of 1e-5 of the domain after its curve 2. */
+    const double hole[4][2] = {{0.8, 0.4}, {1.2, 0.4}, {1.2, 0.6}, {0.8, 0.6}};
+    polygon_loop(s, 1, hole, 4, 2, 2e-5);
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(cap.count, 1);
+    CHECK_CONTAINS(cap.text, "surface 1 (plate)");
+    CHECK_CONTAINS(cap.text, "trim loop 1");
+    CHECK_CONTAINS(cap.text, "straight segment");
+    CHECK_INT(scene.repaired_gaps, 1);
+    CHECK_INT(scene.dropped_loops, 0);
+    CHECK_INT(s->nloops, 2);
+    CHECK_INT(s->loops[0].ncurves, 4);
+    CHECK_INT(s->loops[1].ncurves, 5);
+    /* The new piece, after curve 2: a line from (0.8 + 2e-5, 0.6) to (0.8, 0.6). */
+    const sc_curve *seg = &s->loops[1].curves[3];
+    CHECK_INT(seg->degree, 1);
+    double a[2], b[2];
+    curve_end(seg, 0, a);
+    curve_end(seg, 1, b);
+    CHECK_NEAR(a[0], 0.8 + 2e-5, 1e-15);
+    CHECK_NEAR(b[0], 0.8, 1e-15);
+    CHECK_NEAR(a[1], 0.6, 1e-15);
+    CHECK_NEAR(b[1], 0.6, 1e-15);
+    sc_scene_free(&scene);
+}
+
+TEST(loops_gap_between_last_and_first_curve)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, square, 4, 3, 1e-4);
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(scene.repaired_gaps, 1);
+    CHECK_INT(s->loops[0].ncurves, 5);
+    double a[2];
+    curve_end(&s->loops[0].curves[4], 1, a);
+    CHECK_NEAR(a[0], square[0][0], 0);
+    CHECK_NEAR(a[1], square[0][1], 0);
+    CHECK_CONTAINS(cap.text, "trim loop 0");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_repair_at_sharp_corner_kept)
+{
+    /* A triangle whose second side starts 2.2e-5 down-left of the apex
+     * (1, 0.8): the repair segment runs backwards, so the second side
+     * crosses the first 1.7e-5 from the apex. That is a rounded corner, not
+     * a crossing loop (real CAD files have it: bearing.iges). */
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    sc_loop *l = add_loop(s, 0, 3);
+    line(&l->curves[0], 0.7, 0.2, 1.0, 0.8);
+    line(&l->curves[1], 1.0 - 2e-5, 0.8 - 1e-5, 1.3, 0.2);
+    line(&l->curves[2], 1.3, 0.2, 0.7, 0.2);
+    log_capture cap;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 0);
+    CHECK_INT(scene.repaired_gaps, 1);
+    CHECK_INT(cap.count, 1);
+    CHECK_INT(scene.surfaces[1].loops[0].ncurves, 4);
+    sc_scene_free(&scene);
+
+    /* Neighbouring curves crossing far from where they meet do count: a
+     * quadratic arc from the end of a horizontal line swings back over it. */
+    s = make_scene(&scene);
+    l = add_loop(s, 0, 3);
+    line(&l->curves[0], 0.5, 0.5, 1.5, 0.5);
+    sc_curve *arc = &l->curves[1];
+    sc_curve_alloc(arc, 2, 2, 3);
+    const double k[6] = {0, 0, 0, 1, 1, 1}, cp[9] = {1.5, 0.5, 1, 0.6, 1.0, 1, 1.0, 0.2, 1};
+    memcpy(arc->knots, k, sizeof k);
+    memcpy(arc->cp, cp, sizeof cp);
+    line(&l->curves[2], 1.0, 0.2, 0.5, 0.5);
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_CONTAINS(cap.text, "curve 0 and curve 1");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_large_gap_dropped)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, square, 4, -1, 0);
+    const double hole[4][2] = {{0.8, 0.4}, {1.2, 0.4}, {1.2, 0.6}, {0.8, 0.6}};
+    polygon_loop(s, 1, hole, 4, 0, 0.2); /* 0.1 of the domain */
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_INT(scene.repaired_gaps, 0);
+    CHECK_INT(scene.nsurfaces, 2);
+    CHECK_INT(s->nloops, 1);
+    CHECK_INT(s->loops[0].is_hole, 0);
+    CHECK_INT(cap.count, 1);
+    CHECK_CONTAINS(cap.text, "surface 1 (plate)");
+    CHECK_CONTAINS(cap.text, "trim loop 1 dropped");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_dropped_outer_loop_keeps_holes)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, square, 4, 2, 0.2);
+    const double hole[4][2] = {{0.8, 0.4}, {1.2, 0.4}, {1.2, 0.6}, {0.8, 0.6}};
+    polygon_loop(s, 1, hole, 4, -1, 0);
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_INT(s->nloops, 1);
+    CHECK_INT(s->loops[0].is_hole, 1);
+    CHECK_CONTAINS(cap.text, "trim loop 0 dropped");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_bowtie_dropped)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    /* Sides 0 and 2 cross at (1, 0.5). */
+    const double bowtie[4][2] = {{0.5, 0.25}, {1.5, 0.75}, {1.5, 0.25}, {0.5, 0.75}};
+    polygon_loop(s, 0, bowtie, 4, -1, 0);
+    log_capture cap;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_INT(scene.surfaces[1].nloops, 0);
+    CHECK_CONTAINS(cap.text, "surface 1 (plate): trim loop 0 dropped: it crosses itself");
+    CHECK_CONTAINS(cap.text, "curve 0 and curve 2");
+    CHECK_CONTAINS(cap.text, "u=1 v=0.5");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_figure_eight_curve_dropped)
+{
+    /* One closed cubic B-spline tracing an 8: its two diagonal strokes
+     * cross in the middle, away from its ends. */
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    const double xy[10][2] = {{0.2, 0.5}, {0.2, 0.9}, {0.8, 0.9}, {1.2, 0.1}, {1.8, 0.1},
+                              {1.8, 0.9}, {1.2, 0.9}, {0.8, 0.1}, {0.2, 0.1}, {0.2, 0.5}};
+    sc_loop *l = add_loop(s, 0, 1);
+    sc_curve *c = &l->curves[0];
+    sc_curve_alloc(c, 2, 3, 10);
+    for (int i = 0; i < 14; i++)
+        c->knots[i] = i < 4 ? 0 : i >= 10 ? 1 : (i - 3) / 7.0;
+    for (int i = 0; i < 10; i++) {
+        c->cp[3 * i] = xy[i][0];
+        c->cp[3 * i + 1] = xy[i][1];
+        c->cp[3 * i + 2] = 1;
+    }
+    log_capture cap;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_INT(scene.surfaces[1].nloops, 0);
+    CHECK_CONTAINS(cap.text, "curve 0 and curve 0");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_crossing_at_shared_corner_dropped_touching_kept)
+{
+    /* Two triangles meeting at (1, 0.5), drawn as one loop of six lines.
+     * Turning opposite ways they form an 8 that crosses at the shared
+     * corner; turning the same way they only touch there. */
+    const double eight[6][2] = {{1, .5}, {.5, .9}, {.5, .1}, {1, .5}, {1.5, .9}, {1.5, .1}};
+    const double touch[6][2] = {{1, .5}, {.5, .9}, {.5, .1}, {1, .5}, {1.5, .1}, {1.5, .9}};
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, eight, 6, -1, 0);
+    log_capture cap;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_CONTAINS(cap.text, "crosses itself");
+    sc_scene_free(&scene);
+
+    s = make_scene(&scene);
+    polygon_loop(s, 0, touch, 6, -1, 0);
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 0);
+    CHECK_INT(cap.count, 0);
+    CHECK_INT(scene.surfaces[1].loops[0].ncurves, 6);
+    sc_scene_free(&scene);
+}
+
+TEST(loops_valid_square_and_circle_untouched)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, square, 4, -1, 0);
+    /* A circle of radius 0.2 around (1, 0.5) from four rational quadratic
+     * arcs, as a hole. */
+    static const double R2 = 0.70710678118654752440;
+    const double dir[9][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0},
+                              {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
+    sc_loop *l = add_loop(s, 1, 4);
+    for (int k = 0; k < 4; k++) {
+        sc_curve *c = &l->curves[k];
+        sc_curve_alloc(c, 2, 2, 3);
+        const double kn[6] = {0, 0, 0, 1, 1, 1};
+        memcpy(c->knots, kn, sizeof kn);
+        for (int i = 0; i < 3; i++) {
+            double w = i == 1 ? R2 : 1;
+            c->cp[3 * i] = (1 + 0.2 * dir[2 * k + i][0]) * w;
+            c->cp[3 * i + 1] = (0.5 + 0.2 * dir[2 * k + i][1]) * w;
+            c->cp[3 * i + 2] = w;
+        }
+    }
+    sc_surface before;
+    sc_surface_copy(&before, s);
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(cap.count, 0);
+    CHECK_INT(scene.dropped_loops, 0);
+    CHECK_INT(scene.repaired_gaps, 0);
+    CHECK_INT(s->nloops, 2);
+    for (int li = 0; li < 2; li++) {
+        CHECK_INT(s->loops[li].ncurves, before.loops[li].ncurves);
+        for (int k = 0; k < s->loops[li].ncurves; k++) {
+            const sc_curve *x = &s->loops[li].curves[k], *y = &before.loops[li].curves[k];
+            CHECK(memcmp(x->cp, y->cp, sizeof(double) * 3 * (size_t)x->ncp) == 0);
+            CHECK(memcmp(x->knots, y->knots, sizeof(double) * (size_t)(x->ncp + x->degree + 1)) == 0);
+        }
+    }
+    sc_surface_free(&before);
+    sc_scene_free(&scene);
+}
+
+/* A star-shaped polygon of n sides around (1, 0.5), radius varying. */
+static void star_loop(sc_surface *s, int n)
+{
+    sc_loop *l = add_loop(s, 0, n);
+    for (int k = 0; k < n; k++) {
+        double a0 = 2 * M_PI * k / n, a1 = 2 * M_PI * (k + 1) / n;
+        double r0 = 0.3 + 0.1 * sin(37 * a0), r1 = 0.3 + 0.1 * sin(37 * a1);
+        line(&l->curves[k], 1 + r0 * cos(a0), 0.5 + r0 * sin(a0), 1 + r1 * cos(a1),
+             0.5 + r1 * sin(a1));
+    }
+}
+
+TEST(loops_thousands_of_pieces)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    star_loop(s, 20000);
+    log_capture cap;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 0);
+    CHECK_INT(cap.count, 0);
+    sc_scene_free(&scene);
+
+    /* The same star with one corner moved to the far side, beyond the
+     * outline: its two long sides cross the outline there. */
+    s = make_scene(&scene);
+    star_loop(s, 20000);
+    sc_loop *l = &s->loops[0];
+    double *end = l->curves[5000].cp + 3, *start = l->curves[5001].cp;
+    double x = 1 - 1.5 * (end[0] - 1), y = 0.5 - 1.5 * (end[1] - 0.5);
+    end[0] = start[0] = x;
+    end[1] = start[1] = y;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_CONTAINS(cap.text, "crosses itself");
+    sc_scene_free(&scene);
+}
+
+TEST(loops_invalid_curve_dropped)
+{
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    polygon_loop(s, 0, square, 4, -1, 0);
+    s->loops[0].curves[2].cp[2] = -1; /* a negative weight */
+    log_capture cap;
+    validate(&scene, &cap);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_CONTAINS(cap.text, "curve 2 is invalid");
+    sc_scene_free(&scene);
+}
