@@ -33,4 +33,9 @@ int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err);
  * file. */
 int sc_read_file(const char *path, char **data, size_t *size, sc_error *err);
 
+/* Fails with "name:line: ..." when `text` is not a text file: a NUL byte, a
+ * control character other than tab, CR, LF, FF, VT, or invalid UTF-8.
+ * Readers call it first, so that binary junk is refused before parsing. */
+int sc_check_text(const char *text, size_t size, const char *name, sc_error *err);
+
 #endif

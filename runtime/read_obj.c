@@ -1,0 +1,1114 @@
+/* read_obj.c — the free-form part of Wavefront OBJ (Advanced Visualizer
+ * manual, appendix B1): rational and polynomial Bézier and B-spline
+ * surfaces (`surf`) with trimming loops and holes built from 2D curves
+ * (`curv2`, `trim`, `hole`), names from `o`/`g`, colours from `usemtl` and
+ * the Kd of a .mtl beside the file. Polygons, space curves, special curves
+ * and points are counted as skipped. Conventions verified against the spec
+ * are in docs/formats.md: x y z of `v` are Euclidean with the weight beside
+ * them, control points run u fastest, Bézier `parm` values are segment
+ * break points ((K / deg) + 1 of them for K + 1 control points).
+ *
+ * Every surface and curve is brought to the scene model's clamped form on
+ * read: knot insertion (NURBS core) to multiplicity deg at the ends of the
+ * range the surface is evaluated over, then the control points outside it
+ * are dropped. */
+#include "io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "nurbs.h"
+
+typedef struct obj_vertex {
+    double x[4];  /* x y z w as written (Euclidean, weight) or u v w for vp */
+    int ncoords;
+    int line;
+} obj_vertex;
+
+typedef struct obj_vertex_list {
+    obj_vertex *v;
+    int count, cap;
+} obj_vertex_list;
+
+typedef struct obj_material {
+    char name[64];
+    float kd[3];
+} obj_material;
+
+typedef enum obj_cstype { CS_NONE, CS_BEZIER, CS_BSPLINE, CS_UNSUPPORTED } obj_cstype;
+
+typedef enum obj_element_kind { EL_NONE, EL_SURF, EL_CURV2, EL_SPACE_CURVE } obj_element_kind;
+
+/* One `u0 u1 curv2d` of a trim or hole statement, the curve resolved. */
+typedef struct obj_trim_ref {
+    double t0, t1;
+    int curve;
+} obj_trim_ref;
+
+typedef struct obj_loop_ref {
+    int is_hole;
+    int line;
+    int nrefs;
+    obj_trim_ref *refs;
+} obj_loop_ref;
+
+/* The element between its curv2/surf statement and `end`, with the
+ * state-setting attributes captured when it began. */
+typedef struct obj_element {
+    obj_element_kind kind;
+    int line;
+    obj_cstype cstype;
+    int rational;
+    int cstype_line;
+    char cstype_name[16];
+    int deg[2];
+    double range[4];           /* s0 s1 t0 t1 of surf */
+    int nidx;
+    int *idx;                  /* 0-based vertex or parameter-vertex indices */
+    int nparm[2];
+    double *parm[2];
+    int parm_line[2];
+    int nloops;
+    obj_loop_ref *loops;
+} obj_element;
+
+typedef struct obj_reader {
+    const char *name;
+    sc_error *err;
+    sc_scene *scene;
+    /* logical lines */
+    const char *pos, *end;
+    int next_line, line;
+    char *buf;
+    size_t buf_cap;
+    char **tok;
+    int ntok, tok_cap;
+    /* data */
+    obj_vertex_list verts, pverts;
+    sc_curve *curves;
+    int ncurves;
+    obj_material *materials;
+    int nmaterials;
+    /* state-setting statements */
+    obj_cstype cstype;
+    int rational;
+    int cstype_line;
+    char cstype_name[16];
+    int deg[2];
+    char cur_name[64];
+    float cur_color[3];
+    obj_element el;
+    /* what was skipped */
+    int polygons, space_curves, special_curves, special_points, connections, shell_commands;
+    int unknown_statements;
+} obj_reader;
+
+static int fail(obj_reader *r, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+static int fail(obj_reader *r, int line, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return sc_fail(r->err, r->name, line, "%s", msg);
+}
+
+static int is_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+/* ---- logical lines: comments stripped, backslash continuations joined,
+ * split into tokens; r->line is the first physical line. ---- */
+
+static void buf_append(obj_reader *r, const char *s, size_t n, size_t *len)
+{
+    if (*len + n + 2 > r->buf_cap) {
+        while (*len + n + 2 > r->buf_cap)
+            r->buf_cap = r->buf_cap ? 2 * r->buf_cap : 256;
+        r->buf = sc_realloc(r->buf, r->buf_cap, 1);
+    }
+    memcpy(r->buf + *len, s, n);
+    *len += n;
+    r->buf[(*len)++] = ' ';
+    r->buf[*len] = 0;
+}
+
+static int next_statement(obj_reader *r)
+{
+    while (r->pos < r->end) {
+        r->line = r->next_line;
+        size_t len = 0;
+        if (r->buf)
+            r->buf[0] = 0;
+        for (;;) {
+            const char *eol = memchr(r->pos, '\n', (size_t)(r->end - r->pos));
+            if (!eol)
+                eol = r->end;
+            const char *stop = memchr(r->pos, '#', (size_t)(eol - r->pos));
+            if (!stop)
+                stop = eol;
+            while (stop > r->pos && is_space(stop[-1]))
+                stop--;
+            int more = stop > r->pos && stop[-1] == '\\';
+            if (more)
+                stop--;
+            buf_append(r, r->pos, (size_t)(stop - r->pos), &len);
+            r->pos = eol < r->end ? eol + 1 : r->end;
+            r->next_line++;
+            if (!more || r->pos >= r->end)
+                break;
+        }
+        r->ntok = 0;
+        for (char *p = r->buf; *p;) {
+            while (*p && is_space(*p))
+                p++;
+            if (!*p)
+                break;
+            if (r->ntok == r->tok_cap) {
+                r->tok_cap = r->tok_cap ? 2 * r->tok_cap : 32;
+                r->tok = sc_realloc(r->tok, (size_t)r->tok_cap, sizeof *r->tok);
+            }
+            r->tok[r->ntok++] = p;
+            while (*p && !is_space(*p))
+                p++;
+            if (*p)
+                *p++ = 0;
+        }
+        if (r->ntok)
+            return 1;
+    }
+    return 0;
+}
+
+/* ---- numbers ---- */
+
+static int parse_double(obj_reader *r, const char *tok, const char *what, double *out)
+{
+    char *endp;
+    double v = strtod(tok, &endp);
+    if (endp == tok || *endp)
+        return fail(r, r->line, "%s: expected a number, found '%.40s'", what, tok);
+    if (!isfinite(v))
+        return fail(r, r->line, "%s: '%.40s' is not a finite number", what, tok);
+    *out = v;
+    return SC_OK;
+}
+
+static int parse_int(obj_reader *r, const char *tok, const char *what, long lo, long hi, long *out)
+{
+    char *endp;
+    long v = strtol(tok, &endp, 10);
+    if (endp == tok || *endp)
+        return fail(r, r->line, "%s: expected a whole number, found '%.40s'", what, tok);
+    if (v < lo || v > hi)
+        return fail(r, r->line, "%s %ld is out of range (%ld to %ld)", what, v, lo, hi);
+    *out = v;
+    return SC_OK;
+}
+
+/* OBJ reference numbers: 1-based, or negative counting back from the last
+ * one defined so far. `tok` may carry /vt/vn suffixes, which are ignored. */
+static int parse_ref(obj_reader *r, const char *tok, int count, const char *what, int *out)
+{
+    char *endp;
+    long v = strtol(tok, &endp, 10);
+    if (endp == tok || (*endp && *endp != '/'))
+        return fail(r, r->line, "expected a %s reference number, found '%.40s'", what, tok);
+    long index = v > 0 ? v - 1 : count + v;
+    if (v == 0 || index < 0 || index >= count)
+        return fail(r, r->line, "%s reference %ld is out of range (%d defined so far)", what, v,
+                    count);
+    *out = (int)index;
+    return SC_OK;
+}
+
+/* ---- vertex data ---- */
+
+static int add_vertex(obj_reader *r, obj_vertex_list *list, int min, int max, const char *what)
+{
+    int n = r->ntok - 1;
+    /* Some writers append an RGB colour to `v`: x y z r g b. */
+    int colour_extension = list == &r->verts && n == 6;
+    if ((n < min || n > max) && !colour_extension)
+        return fail(r, r->line, "%s needs %d to %d numbers, has %d", what, min, max, n);
+    if (list->count == list->cap) {
+        list->cap = list->cap ? 2 * list->cap : 64;
+        list->v = sc_realloc(list->v, (size_t)list->cap, sizeof *list->v);
+    }
+    obj_vertex *v = &list->v[list->count];
+    v->x[0] = v->x[1] = v->x[2] = 0;
+    v->x[3] = 1;
+    for (int i = 0; i < n; i++) {
+        double x;
+        if (parse_double(r, r->tok[1 + i], what, &x))
+            return SC_FAIL;
+        if (i < 4)
+            v->x[i] = x;
+    }
+    if (colour_extension)
+        v->x[3] = 1, n = 3;
+    if (list == &r->pverts && n < 3)
+        v->x[2] = 1;   /* the weight of a vp sits in the third place */
+    v->ncoords = n;
+    v->line = r->line;
+    list->count++;
+    return SC_OK;
+}
+
+/* ---- materials ---- */
+
+static const obj_material *find_material(const obj_reader *r, const char *name)
+{
+    for (int i = r->nmaterials - 1; i >= 0; i--)
+        if (!strcmp(r->materials[i].name, name))
+            return &r->materials[i];
+    return NULL;
+}
+
+static void parse_mtl(obj_reader *r, const char *text, size_t size, const char *path)
+{
+    obj_material *cur = NULL;
+    int line = 0;
+    for (const char *p = text, *end = text + size; p < end;) {
+        const char *eol = memchr(p, '\n', (size_t)(end - p));
+        if (!eol)
+            eol = end;
+        line++;
+        char buf[512];
+        size_t n = (size_t)(eol - p) < sizeof buf - 1 ? (size_t)(eol - p) : sizeof buf - 1;
+        memcpy(buf, p, n);
+        buf[n] = 0;
+        p = eol < end ? eol + 1 : end;
+        char *hash = strchr(buf, '#');
+        if (hash)
+            *hash = 0;
+        char *save, *key = strtok_r(buf, " \t\r\f\v", &save);
+        if (!key)
+            continue;
+        if (!strcmp(key, "newmtl")) {
+            char *name = strtok_r(NULL, " \t\r\f\v", &save);
+            if (!name) {
+                sc_log(SC_LOG_WARN, "%s:%d: newmtl without a name (ignored)", path, line);
+                cur = NULL;
+                continue;
+            }
+            r->materials = sc_realloc(r->materials, (size_t)r->nmaterials + 1, sizeof *r->materials);
+            cur = &r->materials[r->nmaterials++];
+            snprintf(cur->name, sizeof cur->name, "%s", name);
+            cur->kd[0] = cur->kd[1] = cur->kd[2] = 0.8f;
+        } else if (!strcmp(key, "Kd") && cur) {
+            double kd[3];
+            int k = 0;
+            char *t;
+            while (k < 3 && (t = strtok_r(NULL, " \t\r\f\v", &save))) {
+                char *endp;
+                kd[k] = strtod(t, &endp);
+                if (endp == t || *endp || !isfinite(kd[k]))
+                    break;
+                k++;
+            }
+            if (k == 1)
+                kd[1] = kd[2] = kd[0];
+            if (k == 1 || k == 3) {
+                for (int i = 0; i < 3; i++) /* the scene's colours are in [0, 1] */
+                    cur->kd[i] = (float)fmin(fmax(kd[i], 0.0), 1.0);
+            } else {
+                sc_log(SC_LOG_WARN, "%s:%d: Kd is not an RGB colour (ignored)", path, line);
+            }
+        }
+    }
+}
+
+static void load_mtllib(obj_reader *r)
+{
+    const char *slash = strrchr(r->name, '/');
+    for (int i = 1; i < r->ntok; i++) {
+        char path[1024];
+        if (r->tok[i][0] == '/' || !slash)
+            snprintf(path, sizeof path, "%s", r->tok[i]);
+        else
+            snprintf(path, sizeof path, "%.*s/%s", (int)(slash - r->name), r->name, r->tok[i]);
+        char *data;
+        size_t size;
+        sc_error e;
+        if (sc_read_file(path, &data, &size, &e)) {
+            sc_log(SC_LOG_WARN, "%s:%d: material library %s: %s (default colours used)", r->name,
+                   r->line, path, e.message);
+            continue;
+        }
+        if (sc_check_text(data, size, path, &e)) {
+            char text[1024];
+            sc_log(SC_LOG_WARN, "%s (material library ignored)", sc_error_text(&e, text, sizeof text));
+        } else {
+            parse_mtl(r, data, size, path);
+        }
+        free(data);
+    }
+}
+
+/* ---- knot vectors and clamping ---- */
+
+static int multiplicity(const double *knots, int n, double t)
+{
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        m += knots[i] == t;
+    return m;
+}
+
+/* For a knot vector in which a and b both have multiplicity >= p: the
+ * range of control points to keep and the clamped knot vector of the piece
+ * over [a, b] (written to out, which holds nknots entries). */
+static void clamp_plan(const double *knots, int nknots, int p, double a, double b, int *first,
+                       int *count, double *out)
+{
+    int last_a = 0, first_b = nknots - 1;
+    for (int i = 0; i < nknots; i++)
+        if (knots[i] == a)
+            last_a = i;
+    for (int i = nknots - 1; i >= 0; i--)
+        if (knots[i] == b)
+            first_b = i;
+    *first = last_a - p;
+    *count = first_b - last_a + p;
+    int k = 0;
+    for (int i = 0; i <= p; i++)
+        out[k++] = a;
+    for (int i = last_a + 1; i < first_b; i++)
+        out[k++] = knots[i];
+    for (int i = 0; i <= p; i++)
+        out[k++] = b;
+}
+
+static int is_clamped_to(const double *knots, int nknots, int p, double a, double b)
+{
+    return multiplicity(knots, p + 1, a) == p + 1 &&
+           multiplicity(knots + nknots - p - 1, p + 1, b) == p + 1;
+}
+
+/* The knot vector with p knots added below and above. The basis
+ * functions of the original control points keep their knots, so with
+ * phantom points at both ends the curve is unchanged on its old range,
+ * which now lies strictly inside the new one: the NURBS core inserts knots
+ * only strictly inside a curve's range, and clamping inserts at its ends. */
+static void pad_knots(const double *k, int nk, int p, double *out)
+{
+    double d = k[nk - 1] > k[0] ? k[nk - 1] - k[0] : 1;
+    for (int i = 0; i < p; i++) {
+        out[i] = k[0] - (p - i) * d;
+        out[p + nk + i] = k[nk - 1] + (i + 1) * d;
+    }
+    memcpy(out + p, k, sizeof(double) * (size_t)nk);
+}
+
+/* Replaces c by its piece over [a, b] in clamped form. */
+static void curve_clamp(sc_curve *c, double a, double b)
+{
+    int p = c->degree, stride = c->dim + 1;
+    if (is_clamped_to(c->knots, c->ncp + p + 1, p, a, b))
+        return;
+    sc_curve padded;
+    sc_curve_alloc(&padded, c->dim, p, c->ncp + 2 * p);
+    pad_knots(c->knots, c->ncp + p + 1, p, padded.knots);
+    for (int i = 0; i < padded.ncp; i++) {
+        int src = i < p ? 0 : i - p < c->ncp ? i - p : c->ncp - 1;
+        memcpy(padded.cp + (size_t)i * (size_t)stride, c->cp + (size_t)src * (size_t)stride,
+               sizeof(double) * (size_t)stride);
+    }
+    sc_curve_free(c);
+    *c = padded;
+    double ends[2] = {a, b};
+    for (int e = 0; e < 2; e++) {
+        int s = multiplicity(c->knots, c->ncp + p + 1, ends[e]);
+        if (s < p) {
+            sc_curve tmp;
+            sc_curve_insert_knot(c, ends[e], p - s, &tmp);
+            sc_curve_free(c);
+            *c = tmp;
+        }
+    }
+    int nk = c->ncp + p + 1;
+    double *knots = sc_alloc((size_t)nk, sizeof(double));
+    int first, count;
+    clamp_plan(c->knots, nk, p, a, b, &first, &count, knots);
+    sc_curve out;
+    sc_curve_alloc(&out, c->dim, p, count);
+    memcpy(out.knots, knots, sizeof(double) * (size_t)(count + p + 1));
+    memcpy(out.cp, c->cp + (size_t)first * (size_t)stride,
+           sizeof(double) * (size_t)count * (size_t)stride);
+    free(knots);
+    sc_curve_free(c);
+    *c = out;
+}
+
+/* Replaces s by the `count` rows of control points starting at `first`
+ * along direction dir (indices outside the net repeat its end rows: the
+ * phantom points of the padding) with `knots` for that direction; name,
+ * colour and transform are kept. */
+static void surface_take(sc_surface *s, int dir, int first, int count, const double *knots)
+{
+    int p = dir ? s->deg_v : s->deg_u;
+    int nu = dir ? s->nu : count, nv = dir ? count : s->nv;
+    sc_surface out = *s;
+    sc_surface_alloc(&out, s->deg_u, s->deg_v, nu, nv);
+    out.nloops = 0;
+    out.loops = NULL;
+    memcpy(dir ? out.knots_v : out.knots_u, knots, sizeof(double) * (size_t)(count + p + 1));
+    if (dir == 0)
+        memcpy(out.knots_v, s->knots_v, sizeof(double) * (size_t)(s->nv + s->deg_v + 1));
+    else
+        memcpy(out.knots_u, s->knots_u, sizeof(double) * (size_t)(s->nu + s->deg_u + 1));
+    for (int j = 0; j < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            int along = dir ? j : i, n = dir ? s->nv : s->nu;
+            int src = first + along;
+            src = src < 0 ? 0 : src >= n ? n - 1 : src;  /* phantom points repeat the ends */
+            int si = dir ? i : src, sj = dir ? src : j;
+            memcpy(out.cp + 4 * ((size_t)j * (size_t)nu + (size_t)i),
+                   s->cp + 4 * ((size_t)sj * (size_t)s->nu + (size_t)si), 4 * sizeof(double));
+        }
+    sc_surface_free(s);
+    *s = out;
+}
+
+/* Replaces s by its piece over [a, b] in direction dir, clamped. */
+static void surface_clamp(sc_surface *s, int dir, double a, double b)
+{
+    int p = dir ? s->deg_v : s->deg_u;
+    int n = dir ? s->nv : s->nu;
+    if (is_clamped_to(dir ? s->knots_v : s->knots_u, n + p + 1, p, a, b))
+        return;
+    double *knots = sc_alloc((size_t)(n + 3 * p + 1), sizeof(double));
+    pad_knots(dir ? s->knots_v : s->knots_u, n + p + 1, p, knots);
+    surface_take(s, dir, -p, n + 2 * p, knots);
+    free(knots);
+    double ends[2] = {a, b};
+    for (int e = 0; e < 2; e++) {
+        int nk = (dir ? s->nv : s->nu) + p + 1;
+        int m = multiplicity(dir ? s->knots_v : s->knots_u, nk, ends[e]);
+        if (m < p) {
+            sc_surface tmp;
+            sc_surface_insert_knot(s, dir, ends[e], p - m, &tmp);
+            sc_surface_free(s);
+            *s = tmp;
+        }
+    }
+    int nk = (dir ? s->nv : s->nu) + p + 1;
+    knots = sc_alloc((size_t)nk, sizeof(double));
+    int first, count;
+    clamp_plan(dir ? s->knots_v : s->knots_u, nk, p, a, b, &first, &count, knots);
+    surface_take(s, dir, first, count, knots);
+    free(knots);
+}
+
+/* The knot vector of one direction of the element, checked, into a new
+ * array; *ncp receives the number of control points it implies. */
+static int element_knots(obj_reader *r, int dir, double **knots, int *ncp)
+{
+    obj_element *el = &r->el;
+    const char *elname = el->kind == EL_SURF ? "surf" : "curv2";
+    int p = el->deg[dir], np = el->nparm[dir], line = el->parm_line[dir];
+    const double *parm = el->parm[dir];
+    char d = "uv"[dir];
+    *knots = NULL;
+    if (!parm)
+        return fail(r, el->line, "%s has no parm %c statement before its end", elname, d);
+    if (el->cstype == CS_BSPLINE) {
+        if (np < 2 * (p + 1))
+            return fail(r, line, "parm %c has %d knots; degree %d needs at least %d", d, np, p,
+                        2 * (p + 1));
+        for (int i = 1; i < np; i++)
+            if (parm[i] < parm[i - 1])
+                return fail(r, line, "parm %c knots decrease at position %d (%.17g after %.17g)",
+                            d, i + 1, parm[i], parm[i - 1]);
+        for (int i = 0; i < np;) {
+            int m = 1;
+            while (i + m < np && parm[i + m] == parm[i])
+                m++;
+            if (m > p + 1)
+                return fail(r, line, "parm %c: knot %.17g repeats %d times; degree %d allows at "
+                            "most %d", d, parm[i], m, p, p + 1);
+            i += m;
+        }
+        *ncp = np - p - 1;
+        if (!(parm[p] < parm[*ncp]))
+            return fail(r, line, "parm %c: the knots give an empty parameter range", d);
+        *knots = sc_alloc((size_t)np, sizeof(double));
+        memcpy(*knots, parm, sizeof(double) * (size_t)np);
+        return SC_OK;
+    }
+    /* Bézier: break points of the segments, which share their end points. */
+    for (int i = 1; i < np; i++)
+        if (!(parm[i] > parm[i - 1]))
+            return fail(r, line, "parm %c values must increase (position %d: %.17g after %.17g)",
+                        d, i + 1, parm[i], parm[i - 1]);
+    int segments = np - 1;
+    if ((size_t)segments * (size_t)p + 1 > (size_t)r->el.nidx)
+        return fail(r, line, "parm %c gives %d Bezier segments of degree %d: more than the %d "
+                    "control points can hold", d, segments, p, r->el.nidx);
+    *ncp = segments * p + 1;
+    double *k = sc_alloc((size_t)(*ncp + p + 1), sizeof(double));
+    int n = 0;
+    for (int i = 0; i <= p; i++)
+        k[n++] = parm[0];
+    for (int sgm = 1; sgm < segments; sgm++)
+        for (int i = 0; i < p; i++)
+            k[n++] = parm[sgm];
+    for (int i = 0; i <= p; i++)
+        k[n++] = parm[segments];
+    *knots = k;
+    return SC_OK;
+}
+
+/* Homogeneous control point from a vertex; weights only count for `rat`. */
+static int vertex_point(obj_reader *r, const obj_vertex *v, int index, int dim, double *out)
+{
+    double w = r->el.rational ? v->x[dim] : 1.0;
+    if (!(w > 0))
+        return fail(r, v->line, "control point %d of the %s at line %d has weight %.17g: weights "
+                    "must be > 0", index + 1, r->el.kind == EL_SURF ? "surf" : "curv2", r->el.line,
+                    w);
+    for (int d = 0; d < dim; d++)
+        out[d] = v->x[d] * w;
+    out[dim] = w;
+    return SC_OK;
+}
+
+static const char *cstype_problem(const obj_element *el)
+{
+    if (el->cstype == CS_NONE)
+        return "no cstype statement comes before it";
+    if (el->cstype == CS_UNSUPPORTED)
+        return "its cstype is not supported (only bezier and bspline are)";
+    return NULL;
+}
+
+static int finish_curv2(obj_reader *r)
+{
+    obj_element *el = &r->el;
+    const char *problem = cstype_problem(el);
+    if (problem)
+        return fail(r, el->cstype_line ? el->cstype_line : el->line, "curv2 at line %d: %s%s%s",
+                    el->line, problem, el->cstype_name[0] ? ": " : "", el->cstype_name);
+    if (el->deg[0] < 1)
+        return fail(r, el->line, "curv2 has no degree (deg statement missing)");
+    double *knots;
+    int ncp;
+    if (element_knots(r, 0, &knots, &ncp))
+        return SC_FAIL;
+    if (ncp != el->nidx) {
+        free(knots);
+        return fail(r, el->line, "curv2 has %d control points; degree %d with its parm u needs %d",
+                    el->nidx, el->deg[0], ncp);
+    }
+    sc_curve c;
+    sc_curve_alloc(&c, 2, el->deg[0], ncp);
+    memcpy(c.knots, knots, sizeof(double) * (size_t)(ncp + el->deg[0] + 1));
+    free(knots);
+    for (int i = 0; i < ncp; i++) {
+        const obj_vertex *v = &r->pverts.v[el->idx[i]];
+        if (v->ncoords < 2) {
+            sc_curve_free(&c);
+            return fail(r, el->line, "control point %d (vp at line %d) has no v coordinate: "
+                        "2D curves need u and v", i + 1, v->line);
+        }
+        if (vertex_point(r, v, i, 2, c.cp + 3 * i)) {
+            sc_curve_free(&c);
+            return SC_FAIL;
+        }
+    }
+    curve_clamp(&c, c.knots[c.degree], c.knots[c.ncp]);
+    sc_error check;
+    if (sc_curve_check(&c, &check)) {
+        sc_curve_free(&c);
+        return fail(r, el->line, "curv2: %s", check.message);
+    }
+    r->curves = sc_realloc(r->curves, (size_t)r->ncurves + 1, sizeof *r->curves);
+    r->curves[r->ncurves++] = c;
+    return SC_OK;
+}
+
+/* Negating the knots reverses a curve exactly (no rounding). */
+static void curve_reverse(sc_curve *c)
+{
+    int nk = c->ncp + c->degree + 1, stride = c->dim + 1;
+    for (int i = 0, j = nk - 1; i <= j; i++, j--) {
+        double a = -c->knots[i], b = -c->knots[j];
+        c->knots[i] = b;
+        c->knots[j] = a;
+    }
+    for (int i = 0, j = c->ncp - 1; i < j; i++, j--)
+        for (int d = 0; d < stride; d++) {
+            double t = c->cp[i * stride + d];
+            c->cp[i * stride + d] = c->cp[j * stride + d];
+            c->cp[j * stride + d] = t;
+        }
+}
+
+/* The piece of a defined curve a trim statement refers to. */
+static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_ref *ref,
+                      sc_curve *out)
+{
+    const sc_curve *c = &r->curves[ref->curve];
+    double t0, t1;
+    sc_curve_domain(c, &t0, &t1);
+    double lo = fmin(ref->t0, ref->t1), hi = fmax(ref->t0, ref->t1);
+    double tol = 1e-9 * (t1 - t0);
+    if (!(hi > lo))
+        return fail(r, loop->line, "%s uses curve %d over the empty range [%.17g, %.17g]",
+                    loop->is_hole ? "hole" : "trim", ref->curve + 1, ref->t0, ref->t1);
+    if (lo < t0 - tol || hi > t1 + tol)
+        return fail(r, loop->line, "%s range [%.17g, %.17g] lies outside the parameter range "
+                    "[%.17g, %.17g] of curve %d", loop->is_hole ? "hole" : "trim", ref->t0,
+                    ref->t1, t0, t1, ref->curve + 1);
+    sc_curve_copy(out, c);
+    if (lo > t0 + tol) {
+        sc_curve left, right;
+        sc_curve_split(out, lo, &left, &right);
+        sc_curve_free(&left);
+        sc_curve_free(out);
+        *out = right;
+    }
+    if (hi < t1 - tol) {
+        sc_curve left, right;
+        sc_curve_split(out, hi, &left, &right);
+        sc_curve_free(&right);
+        sc_curve_free(out);
+        *out = left;
+    }
+    if (ref->t0 > ref->t1)
+        curve_reverse(out);
+    return SC_OK;
+}
+
+static int finish_surf(obj_reader *r)
+{
+    obj_element *el = &r->el;
+    const char *problem = cstype_problem(el);
+    if (problem)
+        return fail(r, el->cstype_line ? el->cstype_line : el->line, "surf at line %d: %s%s%s",
+                    el->line, problem, el->cstype_name[0] ? ": " : "", el->cstype_name);
+    if (el->deg[0] < 1 || el->deg[1] < 1)
+        return fail(r, el->line, "surf needs a degree in u and in v (deg DU DV before it)");
+    double *knots[2] = {NULL, NULL};
+    int n[2];
+    if (element_knots(r, 0, &knots[0], &n[0]) || element_knots(r, 1, &knots[1], &n[1])) {
+        free(knots[0]);
+        return SC_FAIL;
+    }
+    if ((long long)n[0] * n[1] != el->nidx) {
+        free(knots[0]);
+        free(knots[1]);
+        return fail(r, el->line, "surf has %d control points; degrees %d x %d with its parm u and "
+                    "parm v need %d x %d = %lld", el->nidx, el->deg[0], el->deg[1], n[0], n[1],
+                    (long long)n[0] * n[1]);
+    }
+    /* The range the surface is evaluated over: surf's s0 s1 t0 t1 within
+     * the knot vectors' own range. */
+    double lim[4];
+    for (int dir = 0; dir < 2; dir++) {
+        int p = el->deg[dir];
+        double k0 = knots[dir][p], k1 = knots[dir][n[dir]];
+        double a = fmax(el->range[2 * dir], k0), b = fmin(el->range[2 * dir + 1], k1);
+        if (!(a < b)) {
+            free(knots[0]);
+            free(knots[1]);
+            return fail(r, el->line, "surf %c range [%.17g, %.17g] does not overlap the knots' "
+                        "range [%.17g, %.17g]", "uv"[dir], el->range[2 * dir],
+                        el->range[2 * dir + 1], k0, k1);
+        }
+        lim[2 * dir] = a;
+        lim[2 * dir + 1] = b;
+    }
+    sc_surface s;
+    memset(&s, 0, sizeof s);
+    sc_surface_alloc(&s, el->deg[0], el->deg[1], n[0], n[1]);
+    memcpy(s.knots_u, knots[0], sizeof(double) * (size_t)(n[0] + el->deg[0] + 1));
+    memcpy(s.knots_v, knots[1], sizeof(double) * (size_t)(n[1] + el->deg[1] + 1));
+    free(knots[0]);
+    free(knots[1]);
+    for (int k = 0; k < el->nidx; k++)
+        if (vertex_point(r, &r->verts.v[el->idx[k]], k, 3, s.cp + 4 * k)) {
+            sc_surface_free(&s);
+            return SC_FAIL;
+        }
+    static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    memcpy(s.xform, identity, sizeof identity);
+    surface_clamp(&s, 0, lim[0], lim[1]);
+    surface_clamp(&s, 1, lim[2], lim[3]);
+    sc_surface_update_rational(&s);
+    sc_error check;
+    if (sc_surface_check(&s, &check)) {
+        sc_surface_free(&s);
+        return fail(r, el->line, "surf: %s", check.message);
+    }
+    if (el->nloops) {
+        s.loops = sc_alloc((size_t)el->nloops, sizeof(sc_loop));
+        for (int l = 0; l < el->nloops; l++) {
+            const obj_loop_ref *ref = &el->loops[l];
+            sc_loop *loop = &s.loops[s.nloops++];
+            loop->is_hole = ref->is_hole;
+            loop->curves = sc_alloc((size_t)ref->nrefs, sizeof(sc_curve));
+            for (int c = 0; c < ref->nrefs; c++) {
+                if (trim_piece(r, ref, &ref->refs[c], &loop->curves[c])) {
+                    sc_surface_free(&s);
+                    return SC_FAIL;
+                }
+                loop->ncurves++;
+            }
+        }
+    }
+    sc_surface *dst = sc_scene_add_surface(r->scene);
+    if (r->cur_name[0])
+        snprintf(s.name, sizeof s.name, "%s", r->cur_name);
+    else
+        snprintf(s.name, sizeof s.name, "%s", dst->name);
+    memcpy(s.color, r->cur_color, sizeof s.color);
+    *dst = s;
+    return SC_OK;
+}
+
+static void element_clear(obj_element *el)
+{
+    free(el->idx);
+    free(el->parm[0]);
+    free(el->parm[1]);
+    for (int l = 0; l < el->nloops; l++)
+        free(el->loops[l].refs);
+    free(el->loops);
+    memset(el, 0, sizeof *el);
+}
+
+static const char *element_name(obj_element_kind kind)
+{
+    return kind == EL_SURF ? "surf" : kind == EL_CURV2 ? "curv2" : "curv";
+}
+
+/* ---- statements ---- */
+
+static int begin_element(obj_reader *r, obj_element_kind kind)
+{
+    obj_element *el = &r->el;
+    el->kind = kind;
+    el->line = r->line;
+    el->cstype = r->cstype;
+    el->rational = r->rational;
+    el->cstype_line = r->cstype_line;
+    memcpy(el->cstype_name, r->cstype_name, sizeof el->cstype_name);
+    el->deg[0] = r->deg[0];
+    el->deg[1] = r->deg[1];
+    if (kind == EL_SPACE_CURVE) {
+        r->space_curves++;
+        return SC_OK;
+    }
+    int first = 1;
+    if (kind == EL_SURF) {
+        if (r->ntok < 6)
+            return fail(r, r->line, "surf needs s0 s1 t0 t1 and control points");
+        for (int i = 0; i < 4; i++)
+            if (parse_double(r, r->tok[1 + i], "surf parameter range", &el->range[i]))
+                return SC_FAIL;
+        if (!(el->range[0] < el->range[1]) || !(el->range[2] < el->range[3]))
+            return fail(r, r->line, "surf parameter range [%.17g, %.17g] x [%.17g, %.17g] is empty",
+                        el->range[0], el->range[1], el->range[2], el->range[3]);
+        first = 5;
+    } else if (r->ntok < 3) {
+        return fail(r, r->line, "curv2 needs at least two control points");
+    }
+    el->nidx = r->ntok - first;
+    el->idx = sc_alloc((size_t)el->nidx, sizeof(int));
+    obj_vertex_list *list = kind == EL_SURF ? &r->verts : &r->pverts;
+    for (int i = 0; i < el->nidx; i++)
+        if (parse_ref(r, r->tok[first + i], list->count,
+                      kind == EL_SURF ? "vertex" : "parameter vertex", &el->idx[i]))
+            return SC_FAIL;
+    return SC_OK;
+}
+
+static int statement_parm(obj_reader *r)
+{
+    obj_element *el = &r->el;
+    if (r->ntok < 4)
+        return fail(r, r->line, "parm needs a direction (u or v) and at least two values");
+    int dir = !strcmp(r->tok[1], "u") ? 0 : !strcmp(r->tok[1], "v") ? 1 : -1;
+    if (dir < 0)
+        return fail(r, r->line, "parm direction '%.20s' (must be u or v)", r->tok[1]);
+    if (dir == 1 && el->kind == EL_CURV2)
+        return fail(r, r->line, "parm v in a curv2 body (2D curves have only u)");
+    if (el->kind == EL_SPACE_CURVE)
+        return SC_OK;
+    int n = r->ntok - 2;
+    double *v = sc_alloc((size_t)n, sizeof(double));
+    for (int i = 0; i < n; i++)
+        if (parse_double(r, r->tok[2 + i], "parm value", &v[i])) {
+            free(v);
+            return SC_FAIL;
+        }
+    free(el->parm[dir]);   /* the last parm of a direction counts (spec) */
+    el->parm[dir] = v;
+    el->nparm[dir] = n;
+    el->parm_line[dir] = r->line;
+    return SC_OK;
+}
+
+static int statement_loop(obj_reader *r, int is_hole)
+{
+    obj_element *el = &r->el;
+    const char *what = is_hole ? "hole" : "trim";
+    if (el->kind != EL_SURF)
+        return fail(r, r->line, "%s inside a %s body (only surfaces are trimmed)", what,
+                    element_name(el->kind));
+    int n = r->ntok - 1;
+    if (n < 3 || n % 3)
+        return fail(r, r->line, "%s needs groups of three: u0 u1 curv2d (has %d values)", what, n);
+    el->loops = sc_realloc(el->loops, (size_t)el->nloops + 1, sizeof *el->loops);
+    obj_loop_ref *loop = &el->loops[el->nloops++];
+    loop->is_hole = is_hole;
+    loop->line = r->line;
+    loop->nrefs = n / 3;
+    loop->refs = sc_alloc((size_t)loop->nrefs, sizeof *loop->refs);
+    for (int i = 0; i < loop->nrefs; i++) {
+        obj_trim_ref *ref = &loop->refs[i];
+        if (parse_double(r, r->tok[1 + 3 * i], what, &ref->t0) ||
+            parse_double(r, r->tok[2 + 3 * i], what, &ref->t1))
+            return SC_FAIL;
+        const char *tok = r->tok[3 + 3 * i];
+        char *endp;
+        long v = strtol(tok, &endp, 10);
+        if (endp == tok || *endp)
+            return fail(r, r->line, "%s: expected a curve number, found '%.40s'", what, tok);
+        long index = v > 0 ? v - 1 : r->ncurves + v;
+        if (v == 0 || index < 0 || index >= r->ncurves)
+            return fail(r, r->line, "%s refers to curve %ld, which is not defined (%d curv2 "
+                        "defined so far)", what, v, r->ncurves);
+        ref->curve = (int)index;
+    }
+    return SC_OK;
+}
+
+static int statement_cstype(obj_reader *r)
+{
+    int i = 1, rational = 0;
+    if (i < r->ntok && !strcmp(r->tok[i], "rat")) {
+        rational = 1;
+        i++;
+    }
+    if (i != r->ntok - 1)
+        return fail(r, r->line, "cstype needs one type: [rat] bezier|bspline");
+    const char *type = r->tok[i];
+    obj_cstype cs;
+    if (!strcmp(type, "bezier"))
+        cs = CS_BEZIER;
+    else if (!strcmp(type, "bspline"))
+        cs = CS_BSPLINE;
+    else if (!strcmp(type, "bmatrix") || !strcmp(type, "cardinal") || !strcmp(type, "taylor"))
+        cs = CS_UNSUPPORTED;
+    else
+        return fail(r, r->line, "unknown cstype '%.20s' (bezier, bspline, bmatrix, cardinal or "
+                    "taylor)", type);
+    r->cstype = cs;
+    r->rational = rational;
+    r->cstype_line = r->line;
+    snprintf(r->cstype_name, sizeof r->cstype_name, "%s", type);
+    return SC_OK;
+}
+
+static int statement_deg(obj_reader *r)
+{
+    if (r->ntok < 2 || r->ntok > 3)
+        return fail(r, r->line, "deg needs one or two degrees: deg DU [DV]");
+    long d[2] = {0, 0};
+    for (int i = 0; i + 1 < r->ntok; i++)
+        if (parse_int(r, r->tok[1 + i], "degree", 1, 1000000, &d[i]))
+            return SC_FAIL;
+    r->deg[0] = (int)d[0];
+    r->deg[1] = (int)d[1];
+    return SC_OK;
+}
+
+static void statement_name(obj_reader *r)
+{
+    /* o takes the rest of the line; g the first of its group names. */
+    size_t len = 0;
+    r->cur_name[0] = 0;
+    int last = !strcmp(r->tok[0], "g") ? 1 : r->ntok - 1;
+    for (int i = 1; i <= last && i < r->ntok; i++) {
+        int n = snprintf(r->cur_name + len, sizeof r->cur_name - len, "%s%s", i > 1 ? " " : "",
+                         r->tok[i]);
+        if (n < 0 || (size_t)n >= sizeof r->cur_name - len)
+            break;
+        len += (size_t)n;
+    }
+}
+
+static void statement_usemtl(obj_reader *r)
+{
+    static const float white[3] = {0.8f, 0.8f, 0.8f};
+    const obj_material *m = r->ntok > 1 ? find_material(r, r->tok[1]) : NULL;
+    if (!m && r->ntok > 1)
+        sc_log(SC_LOG_WARN, "%s:%d: material '%s' is not defined in a material library (default "
+               "colour used)", r->name, r->line, r->tok[1]);
+    memcpy(r->cur_color, m ? m->kd : white, sizeof r->cur_color);
+}
+
+/* Statements that only matter to polygon renderers or to the Advanced
+ * Visualizer: read past without a note. */
+static int is_ignored(const char *k)
+{
+    static const char *const list[] = {"vt", "vn", "s", "mg", "lod", "bevel", "c_interp",
+                                       "d_interp", "shadow_obj", "trace_obj", "ctech", "stech",
+                                       "maplib", "usemap", "bmat", "step", "res", NULL};
+    for (int i = 0; list[i]; i++)
+        if (!strcmp(k, list[i]))
+            return 1;
+    return 0;
+}
+
+static int body_statement(obj_reader *r)
+{
+    const char *k = r->tok[0];
+    obj_element *el = &r->el;
+    if (!strcmp(k, "parm"))
+        return statement_parm(r);
+    if (!strcmp(k, "trim") || !strcmp(k, "hole"))
+        return el->kind == EL_SPACE_CURVE ? SC_OK : statement_loop(r, k[0] == 'h');
+    if (!strcmp(k, "scrv")) {
+        r->special_curves++;
+        return SC_OK;
+    }
+    if (!strcmp(k, "sp")) {
+        r->special_points++;
+        return SC_OK;
+    }
+    if (!strcmp(k, "end")) {
+        int status = SC_OK;
+        if (el->kind == EL_SURF)
+            status = finish_surf(r);
+        else if (el->kind == EL_CURV2)
+            status = finish_curv2(r);
+        element_clear(el);
+        return status;
+    }
+    return fail(r, r->line, "'%.20s' inside the %s body that begins at line %d: the body needs "
+                "its end statement first", k, element_name(el->kind), el->line);
+}
+
+static int statement(obj_reader *r)
+{
+    const char *k = r->tok[0];
+    if (r->el.kind != EL_NONE)
+        return body_statement(r);
+    if (!strcmp(k, "v"))
+        return add_vertex(r, &r->verts, 3, 4, "v");
+    if (!strcmp(k, "vp"))
+        return add_vertex(r, &r->pverts, 1, 3, "vp");
+    if (!strcmp(k, "surf"))
+        return begin_element(r, EL_SURF);
+    if (!strcmp(k, "curv2"))
+        return begin_element(r, EL_CURV2);
+    if (!strcmp(k, "curv"))
+        return begin_element(r, EL_SPACE_CURVE);
+    if (!strcmp(k, "cstype"))
+        return statement_cstype(r);
+    if (!strcmp(k, "deg"))
+        return statement_deg(r);
+    if (!strcmp(k, "f") || !strcmp(k, "l") || !strcmp(k, "p") || !strcmp(k, "fo")) {
+        r->polygons++;
+        return SC_OK;
+    }
+    if (!strcmp(k, "o") || !strcmp(k, "g")) {
+        statement_name(r);
+        return SC_OK;
+    }
+    if (!strcmp(k, "usemtl")) {
+        statement_usemtl(r);
+        return SC_OK;
+    }
+    if (!strcmp(k, "mtllib")) {
+        load_mtllib(r);
+        return SC_OK;
+    }
+    if (!strcmp(k, "con")) {
+        r->connections++;
+        return SC_OK;
+    }
+    if (!strcmp(k, "csh")) {
+        r->shell_commands++;
+        return SC_OK;
+    }
+    if (!strcmp(k, "call"))
+        return fail(r, r->line, "call (reading another .obj file) is not supported");
+    if (!strcmp(k, "parm") || !strcmp(k, "trim") || !strcmp(k, "hole") || !strcmp(k, "scrv") ||
+        !strcmp(k, "sp") || !strcmp(k, "end"))
+        return fail(r, r->line, "%s outside a curv2 or surf body", k);
+    if (is_ignored(k))
+        return SC_OK;
+    if (!r->unknown_statements++)
+        sc_log(SC_LOG_WARN, "%s:%d: unknown statement '%.20s' ignored", r->name, r->line, k);
+    return SC_OK;
+}
+
+static void note_skipped(obj_reader *r, int count, const char *type, const char *reason,
+                         const char *what)
+{
+    if (!count)
+        return;
+    sc_scene_skip(r->scene, type, reason, count);
+    sc_log(SC_LOG_WARN, "%s: %d %s ignored", r->name, count, what);
+}
+
+static int read_all(obj_reader *r)
+{
+    while (next_statement(r))
+        if (statement(r))
+            return SC_FAIL;
+    if (r->el.kind != EL_NONE)
+        return fail(r, r->el.line, "the %s body that begins here has no end statement (file "
+                    "truncated?)", element_name(r->el.kind));
+    note_skipped(r, r->polygons, "polygon", "not-free-form", "polygonal elements (f, l, p)");
+    note_skipped(r, r->space_curves, "curv", "not-a-surface", "space curves (curv)");
+    note_skipped(r, r->special_curves, "scrv", "not-rendered", "special curves (scrv)");
+    note_skipped(r, r->special_points, "sp", "not-rendered", "special point statements (sp)");
+    note_skipped(r, r->connections, "con", "not-used", "connectivity statements (con)");
+    note_skipped(r, r->shell_commands, "csh", "not-executed", "csh statements");
+    note_skipped(r, r->unknown_statements, "statement", "unknown", "unknown statements");
+    return SC_OK;
+}
+
+int sc_read_obj(const char *text, size_t size, const char *name, sc_scene *scene, sc_error *err)
+{
+    sc_scene_init(scene);
+    if (sc_check_text(text, size, name, err))
+        return SC_FAIL;
+    obj_reader r;
+    memset(&r, 0, sizeof r);
+    r.name = name;
+    r.err = err;
+    r.scene = scene;
+    r.pos = text;
+    r.end = text + size;
+    r.next_line = 1;
+    r.cur_color[0] = r.cur_color[1] = r.cur_color[2] = 0.8f;
+    int status = read_all(&r);
+    element_clear(&r.el);
+    free(r.buf);
+    free(r.tok);
+    free(r.verts.v);
+    free(r.pverts.v);
+    for (int i = 0; i < r.ncurves; i++)
+        sc_curve_free(&r.curves[i]);
+    free(r.curves);
+    free(r.materials);
+    if (status) {
+        sc_scene_free(scene);
+        return SC_FAIL;
+    }
+    snprintf(scene->source, sizeof scene->source, "%s", name);
+    sc_scene_validate_loops(scene);
+    return SC_OK;
+}

@@ -1,0 +1,141 @@
+/* read_scene.c — the front door of the readers: a scene by file name (the
+ * extension picks the reader), the embedded default teapot, whole files
+ * into memory, and the text check every reader runs before parsing so that
+ * binary junk is refused with a position instead of being half-parsed. */
+#include "io.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "embedded.h"
+
+int sc_read_file(const char *path, char **data, size_t *size, sc_error *err)
+{
+    *data = NULL;
+    *size = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return sc_fail(err, path, 0, "cannot open: %s", strerror(errno));
+    size_t cap = 1 << 16, n = 0;
+    char *buf = sc_alloc(cap, 1);
+    for (;;) {
+        if (cap - n < 2)
+            buf = sc_realloc(buf, cap *= 2, 1);
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    int failed = ferror(f);
+    int saved = errno;
+    fclose(f);
+    if (failed) {
+        free(buf);
+        return sc_fail(err, path, 0, "cannot read: %s", strerror(saved));
+    }
+    buf[n] = 0;
+    *data = buf;
+    *size = n;
+    return SC_OK;
+}
+
+/* Length of the UTF-8 sequence starting at s (at most `left` bytes), or 0
+ * when it is not a valid, shortest-form encoding of a scalar value. */
+static size_t utf8_length(const unsigned char *s, size_t left)
+{
+    size_t len;
+    unsigned min;
+    unsigned cp;
+    if (s[0] >= 0xC2 && s[0] <= 0xDF) {
+        len = 2, min = 0x80, cp = s[0] & 0x1Fu;
+    } else if (s[0] >= 0xE0 && s[0] <= 0xEF) {
+        len = 3, min = 0x800, cp = s[0] & 0x0Fu;
+    } else if (s[0] >= 0xF0 && s[0] <= 0xF4) {
+        len = 4, min = 0x10000, cp = s[0] & 0x07u;
+    } else {
+        return 0;
+    }
+    if (left < len)
+        return 0;
+    for (size_t i = 1; i < len; i++) {
+        if ((s[i] & 0xC0) != 0x80)
+            return 0;
+        cp = (cp << 6) | (s[i] & 0x3Fu);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
+        return 0;
+    return len;
+}
+
+int sc_check_text(const char *text, size_t size, const char *name, sc_error *err)
+{
+    const unsigned char *s = (const unsigned char *)text;
+    int line = 1;
+    for (size_t i = 0; i < size;) {
+        unsigned char c = s[i];
+        if (c == '\n') {
+            line++;
+            i++;
+        } else if (c >= 0x20 && c < 0x7F) {
+            i++;
+        } else if (c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+            i++;
+        } else if (c == 0) {
+            return sc_fail(err, name, line, "NUL byte: this is not a text file");
+        } else if (c < 0x80) {
+            return sc_fail(err, name, line, "control character 0x%02x: this is not a text file", c);
+        } else {
+            size_t len = utf8_length(s + i, size - i);
+            if (!len)
+                return sc_fail(err, name, line, "invalid byte 0x%02x (not UTF-8 text)", c);
+            i += len;
+        }
+    }
+    return SC_OK;
+}
+
+int sc_load_default_scene(sc_scene *scene, sc_error *err)
+{
+    const sc_embedded_file *f = sc_embedded_find("teapot32.bpt");
+    if (!f) {
+        sc_scene_init(scene);
+        return sc_fail(err, NULL, 0, "the embedded teapot32.bpt is missing from the library");
+    }
+    return sc_read_bpt((const char *)f->data, f->size, "teapot", scene, err);
+}
+
+static int has_extension(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    return n > e && !strcasecmp(path + n - e, ext);
+}
+
+int sc_read_scene(const char *path, sc_scene *scene, sc_error *err)
+{
+    if (!strcmp(path, "teapot"))
+        return sc_load_default_scene(scene, err);
+    int (*reader)(const char *, size_t, const char *, sc_scene *, sc_error *) = NULL;
+    if (has_extension(path, ".bpt"))
+        reader = sc_read_bpt;
+    else if (has_extension(path, ".obj"))
+        reader = sc_read_obj;
+    else if (has_extension(path, ".igs") || has_extension(path, ".iges"))
+        reader = sc_read_iges;
+    if (!reader) {
+        sc_scene_init(scene);
+        return sc_fail(err, path, 0, "unknown scene type: expected a .bpt, .obj, .igs or .iges "
+                       "file, or `teapot`");
+    }
+    char *data;
+    size_t size;
+    if (sc_read_file(path, &data, &size, err)) {
+        sc_scene_init(scene);
+        return SC_FAIL;
+    }
+    int status = reader(data, size, path, scene, err);
+    free(data);
+    return status;
+}
