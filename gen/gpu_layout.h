@@ -1,0 +1,147 @@
+/* gpu_layout.h — the contract between generated programs and the runtime:
+ * which textures hold the patch data and how it sits in them, which inputs
+ * the vertex stage hands to the fragment stage, which uniforms the program
+ * reads and which results it produces. The runtime fills this layout, the
+ * compiler reads it; docs/gpu-layout.md says the same in prose.
+ *
+ * Coordinates. Every record (one GPU patch: an extracted Bézier patch for
+ * `bez` keys, a whole NURBS surface for `nurbs` keys) has a centre c (the
+ * middle of its control points' bounding box, object space). Control points
+ * are stored relative to c, and the ray origin the vertex stage passes is
+ * relative to c too, so float precision does not depend on where the model
+ * sits.
+ *
+ * Integers stored in float texels (offsets, counts, degrees, ids) are exact
+ * below 2^24 = 16,777,216, which bounds the number of texels per texture.
+ */
+#ifndef SCG_GPU_LAYOUT_H
+#define SCG_GPU_LAYOUT_H
+
+/* ---- textures: all buffer textures (GL_TEXTURE_BUFFER, samplerBuffer,
+ * read with texelFetch), bound to the texture unit equal to the enum
+ * value ---- */
+typedef enum scg_texture {
+    /* unit 0, "sc_points", GL_RGBA32F: homogeneous control points
+     * ((x - c.x)·w, (y - c.y)·w, (z - c.z)·w, w). A record's point (i, j),
+     * i along u (0 … nu-1), j along v, is texel cp_offset + j·nu + i. */
+    SCG_TEX_POINTS = 0,
+    /* unit 1, "sc_knots", GL_R32F: knot vectors, each in full (clamped,
+     * nu + deg_u + 1 resp. nv + deg_v + 1 values) from its offset. Used by
+     * `nurbs` keys only; `bez` records need no knots. */
+    SCG_TEX_KNOTS = 1,
+    /* unit 2, "sc_records", GL_RGBA32F: SCG_RECORD_TEXELS texels per record,
+     * record r from texel SCG_RECORD_TEXELS·r:
+     *   +0: (cp_offset, nu, nv, surface id in the scene)
+     *   +1: (knot_u_offset, knot_v_offset, deg_u, deg_v)
+     *   +2: (u0, u1, v0, v1): the record's parameter rectangle in its
+     *       surface's domain. `bez` programs iterate in the patch's local
+     *       parameters [0,1]² and map their (u, v) result through it;
+     *       `nurbs` programs iterate in surface parameters directly.
+     *   +3: (c.x, c.y, c.z, trim block): the centre, for the vertex stage,
+     *       and the texel index in sc_records of the record's trim block
+     *       (below), 0 when the record is untrimmed. */
+    SCG_TEX_RECORDS = 2,
+    SCG_TEXTURE_COUNT
+} scg_texture;
+
+enum { SCG_RECORD_TEXELS = 4 };
+
+/* ---- trim blocks (docs/trimming.md) ----
+ * The trim data of a surface is one block of RGBA32F texels appended to
+ * sc_records after the records; every record of the surface names it in
+ * texel +3 .w. Offsets inside a block are relative to its first texel, so
+ * a block can be placed anywhere. Coordinates are normalised to the
+ * surface's domain, [0,1]², so that float precision is the same for every
+ * domain. For trim degree N (the key's):
+ *   +0: (piece count P, slab count S, parity bias, slab table offset)
+ *   +1: (scale_u, scale_v, offset_u, offset_v): normalised (u, v) =
+ *       surface (u, v) · scale + offset
+ *   +2 + k·(N+2): piece k, SCG_TRIM_PIECE_TEXELS(N) texels:
+ *       (v_lo, v_hi, u_min, u_max), then N+1 homogeneous control points
+ *       (u·w, v·w, w, _) in order of increasing v; the first point's .w is
+ *       u_lo, the u of the end point at v_lo. The piece covers
+ *       v_lo <= v < v_hi, its u lies in [u_min, u_max].
+ *   slab table (offset in +0 .w), S+1 texels: slab s is
+ *       (y_s, item offset, item count, 0) for y_s <= v < y_{s+1}; the last
+ *       texel is (y_S, _, 0, 0), the end of the last slab.
+ *   items (offsets in the slab texels), one texel each:
+ *       (piece offset, u_min, u_max, 0): the pieces spanning the slab,
+ *       ordered by u, with the bounds of u over their part in the slab.
+ * A point is kept when the count of pieces crossed by the ray from it
+ * towards +u, plus the parity bias, is odd (bias 1 when the surface has
+ * only holes, 0 when it has an outer loop). */
+enum { SCG_TRIM_HEADER_TEXELS = 2 };
+#define SCG_TRIM_PIECE_TEXELS(degree) ((degree) + 2)
+
+/* ---- fragment-stage inputs (vertex-stage outputs) ---- */
+typedef enum scg_input_slot {
+    /* vec3, flat: the eye in the record's re-centred object space. */
+    SCG_IN_RAY_ORIGIN = 0,
+    /* vec3, smooth: hull vertex - eye (re-centred object space, not
+     * normalised). Interpolated, it is the fragment's hull point minus the
+     * eye, so the ray is origin + t·dir with t = 1 on the hull. */
+    SCG_IN_RAY_DIR,
+    /* vec2, smooth: initial (u, v) for `cp` starts (parameter values of the
+     * hull's vertices, interpolated), in the program's parameters (local
+     * [0,1]² for `bez`, surface parameters for `nurbs`). */
+    SCG_IN_UV0,
+    /* vec4, flat: the hull's sub-patch domain (u0, u1, v0, v1), in the same
+     * parameters. `mid` starts begin at its centre; every method stops when
+     * (u, v) leaves it by more than SCG_DOMAIN_OVERLAP of its size. */
+    SCG_IN_DOMAIN,
+    /* int, flat: record index (see SCG_TEX_RECORDS). */
+    SCG_IN_RECORD,
+    /* float: early ray termination — the ray parameter t (same units as
+     * SCG_IN_RAY_DIR) of the nearest surface already drawn on this pixel, or
+     * a huge value (3.0e38) when there is none. Read only by ert1/ert2 keys. */
+    SCG_IN_T_LIMIT,
+    SCG_INPUT_COUNT
+} scg_input_slot;
+
+/* ---- uniforms (default block; location = enum value) ---- */
+typedef enum scg_uniform_slot {
+    /* float "sc_footprint": size of one pixel at unit distance,
+     * 2·tan(fovy/2) / image height. The program's tolerance in object units
+     * is key tolerance × sc_footprint × length(dir) — the footprint at the
+     * hull, which lies in front of the surface, so the bound is slightly
+     * stricter than the footprint at the hit. Valid for rigid and uniformly
+     * scaled transforms. */
+    SCG_UNI_FOOTPRINT = 0,
+    SCG_UNIFORM_COUNT
+} scg_uniform_slot;
+
+/* ---- results of the intersection function ---- */
+typedef enum scg_output_slot {
+    SCG_OUT_HIT = 0,   /* bool: converged inside the domain, in front of the
+                          eye (and in front of T_LIMIT for ert2) */
+    SCG_OUT_UV,        /* vec2: (u, v) in the surface's domain */
+    SCG_OUT_T,         /* float: ray parameter of the hit (dir units) */
+    SCG_OUT_POINT,     /* vec3: hit point, re-centred object space */
+    SCG_OUT_NORMAL,    /* vec3: unit normal Su × Sv (object space, not
+                          flipped); -normalize(dir) where Su × Sv vanishes */
+    SCG_OUT_ITERS,     /* int: iterations taken */
+    SCG_OUT_SURFACE,   /* int: surface id (record texel +0 .w) */
+    SCG_OUTPUT_COUNT
+} scg_output_slot;
+
+/* Parameter overlap allowed around a sub-patch domain, as a fraction of its
+ * width and height (Martin et al.: leaves overlap slightly so that no crack
+ * opens between neighbouring sub-patches). (u, v) must in addition stay in
+ * the record's own domain, widened by SCG_DOMAIN_EPS of its size. */
+#define SCG_DOMAIN_OVERLAP 0.1f
+#define SCG_DOMAIN_EPS 1.0e-5f
+
+/* Names and GLSL declarations, for the emitter and the runtime. */
+typedef struct scg_slot_info {
+    const char *name;      /* GLSL identifier, e.g. "sc_ray_dir" */
+    const char *glsl_type; /* "vec3", "int", "samplerBuffer", … */
+    int flat;              /* inputs: 1 when `flat` interpolation */
+    int components;        /* 4 or 1 for textures; width for others */
+} scg_slot_info;
+
+const scg_slot_info *scg_texture_info(scg_texture tex);
+const scg_slot_info *scg_input_info(scg_input_slot slot);
+const scg_slot_info *scg_uniform_info(scg_uniform_slot slot);
+const scg_slot_info *scg_output_info(scg_output_slot slot);
+
+#endif

@@ -1,0 +1,290 @@
+/* ir.h — the compiler's intermediate representation: one intersection
+ * program (the fragment stage's "intersect" function) as a flat array of
+ * typed instructions, the builder that the metaprograms use to write it, the
+ * optimisation passes, the validator, the listing and the CPU interpreter.
+ *
+ * Shape of a program (in the spirit of Mesa NIR and QBE):
+ *  - Every instruction defines at most one value; a value is named by the
+ *    index of the instruction that defines it (scg_value). Index 0 is a
+ *    reserved "no value", so operands that are absent are 0.
+ *  - Values are immutable (SSA). Mutable state — what flows out of a guarded
+ *    iteration or round a loop — lives in local variables (SCG_OP_VAR) that
+ *    are read with LOAD and written with STORE; a variable may be an array.
+ *  - Control flow is structured: IF … [ELSE …] ENDIF and LOOP … ENDLOOP nest
+ *    like braces. A value defined inside a block is visible only until that
+ *    block closes (GLSL scoping), so the GLSL emitter prints every value as a
+ *    local `type name = expr;` where it is defined, and each block as braces.
+ *  - Instructions appear in order: an operand is always defined earlier.
+ *
+ * Types follow GLSL: bool, int, float, vec2, vec3, vec4. Arithmetic on
+ * vectors is componentwise; a float operand mixed with a vector is broadcast
+ * (as GLSL's vec * float). */
+#ifndef SCG_IR_H
+#define SCG_IR_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "sc_base.h"
+#include "key.h"
+#include "gpu_layout.h"
+
+typedef enum scg_type {
+    SCG_VOID = 0,   /* instructions that define nothing (STORE, IF, OUTPUT…) */
+    SCG_BOOL,
+    SCG_INT,
+    SCG_FLOAT,
+    SCG_VEC2,
+    SCG_VEC3,
+    SCG_VEC4
+} scg_type;
+
+/* Component count of a float type (float 1, vecN N), 1 for bool and int,
+ * 0 for void. */
+int scg_type_width(scg_type t);
+/* GLSL spelling: "bool", "int", "float", "vec2", …, "void". */
+const char *scg_type_name(scg_type t);
+
+/* The node kinds. Operands are a, b, c, d (scg_inst.arg[0..3]); "slot" and
+ * "imm" are the instruction's immediate fields. Unless said otherwise the
+ * result type is the operands' type (with float broadcast to the vector). */
+typedef enum scg_op {
+    SCG_OP_NOP = 0,  /* removed by a pass; never present after compaction */
+
+    /* leaves */
+    SCG_OP_CONST,    /* imm.f[0..w-1] for float types, imm.i for int/bool */
+    SCG_OP_INPUT,    /* fragment-stage input number `slot` (scg_input) */
+    SCG_OP_UNIFORM,  /* uniform number `slot` (scg_uniform) */
+    SCG_OP_FETCH,    /* texelFetch(texture `slot` (scg_texture), int a):
+                        vec4 for RGBA textures, float for R32F */
+
+    /* arithmetic: float types, and int for ADD/SUB/MUL/NEG/MIN/MAX/ABS */
+    SCG_OP_ADD,      /* a + b */
+    SCG_OP_SUB,      /* a - b */
+    SCG_OP_MUL,      /* a * b (componentwise) */
+    SCG_OP_DIV,      /* a / b (int: truncating; the IR never divides ints
+                        by zero on purpose) */
+    SCG_OP_NEG,      /* -a */
+    SCG_OP_MIN,      /* min(a, b) */
+    SCG_OP_MAX,      /* max(a, b) */
+    SCG_OP_ABS,      /* abs(a) */
+    SCG_OP_SQRT,     /* sqrt(a) */
+    SCG_OP_FLOOR,    /* floor(a) */
+    SCG_OP_DOT,      /* dot(a, b) -> float */
+    SCG_OP_CROSS,    /* cross(a, b): vec3 */
+    SCG_OP_LENGTH,   /* length(a) -> float */
+
+    /* vectors */
+    SCG_OP_VEC,      /* vecN(a, b[, c[, d]]) from N floats (type = vecN) */
+    SCG_OP_COMP,     /* component `slot` (0 = x … 3 = w) of vector a -> float */
+
+    /* comparisons of two floats or two ints -> bool */
+    SCG_OP_LT,       /* a < b */
+    SCG_OP_LE,       /* a <= b */
+    SCG_OP_EQ,       /* a == b */
+    SCG_OP_NE,       /* a != b */
+
+    /* bool logic */
+    SCG_OP_AND,      /* a && b */
+    SCG_OP_OR,       /* a || b */
+    SCG_OP_NOT,      /* !a */
+    SCG_OP_SELECT,   /* bool a ? b : c (b, c same type) */
+
+    /* conversions */
+    SCG_OP_I2F,      /* float(int a) */
+    SCG_OP_F2I,      /* int(float a), truncation toward zero */
+
+    /* local variables (mutable state) */
+    SCG_OP_VAR,      /* declares a variable of `type`; slot = array length
+                        (0: not an array); a = initial value or 0 (then the
+                        content is zero, and the emitter initialises it) */
+    SCG_OP_LOAD,     /* value of variable a (element b when an array) */
+    SCG_OP_STORE,    /* variable a (element c when an array) = b; void */
+
+    /* structured control flow (void) */
+    SCG_OP_IF,       /* if (bool a) {            */
+    SCG_OP_ELSE,     /* } else {                 */
+    SCG_OP_ENDIF,    /* }                        */
+    SCG_OP_LOOP,     /* for (int i = 0; i < int a; i++) { — defines the int
+                        counter i, visible inside the loop */
+    SCG_OP_BREAK,    /* break; out of the innermost LOOP */
+    SCG_OP_ENDLOOP,  /* }                        */
+
+    /* results (void) */
+    SCG_OP_OUTPUT,   /* output number `slot` (scg_output) = a */
+
+    SCG_OP_COUNT
+} scg_op;
+
+/* Lower-case mnemonic used by the listing ("add", "fetch", …). */
+const char *scg_op_name(scg_op op);
+
+typedef int scg_value;     /* index of the defining instruction; 0 = none */
+
+typedef struct scg_inst {
+    scg_op op;
+    scg_type type;         /* type of the value defined (SCG_VOID if none) */
+    scg_value arg[4];      /* operands a, b, c, d; 0 when absent */
+    int slot;              /* input/uniform/output/texture number, component,
+                              or array length (see scg_op) */
+    union {
+        float f[4];        /* CONST of float types */
+        int i;             /* CONST of int and bool (0/1) */
+    } imm;
+    char name[16];         /* readable hint ("Su", "uv", "F") or ""; the
+                              listing and the emitter append it to the value
+                              number; passes keep it */
+} scg_inst;
+
+typedef struct scg_program {
+    scg_key key;           /* the key the program was built for */
+    int count;             /* instructions [1, count) are live; [0] is unused */
+    int capacity;
+    scg_inst *insts;
+} scg_program;
+
+scg_program *scg_program_create(const scg_key *key);
+void scg_program_free(scg_program *prog);
+/* Number of real instructions (excluding the reserved slot 0). */
+int scg_program_size(const scg_program *prog);
+
+/* ---- builder ----
+ * Appends instructions at the end of a program; every helper returns the
+ * new value (0 for void instructions). Type errors in the metaprograms are
+ * programming errors: the builder does not check them, the validator does.
+ * `name`, when not NULL, is copied into the hint of the values built after
+ * it until it is changed (scg_name(b, NULL) clears it). */
+typedef struct scg_builder {
+    scg_program *prog;
+    const char *name;
+} scg_builder;
+
+void scg_builder_init(scg_builder *b, scg_program *prog);
+void scg_name(scg_builder *b, const char *name);
+/* Sets the hint of one value after the fact. */
+void scg_set_name(scg_builder *b, scg_value v, const char *name);
+scg_value scg_emit(scg_builder *b, scg_op op, scg_type type, scg_value a,
+                   scg_value bb, scg_value c, int slot);
+
+scg_value scg_const_f(scg_builder *b, float x);
+scg_value scg_const_vec(scg_builder *b, int width, const float *xs);
+scg_value scg_const_i(scg_builder *b, int x);
+scg_value scg_const_b(scg_builder *b, bool x);
+scg_value scg_input(scg_builder *b, scg_input_slot slot);
+scg_value scg_uniform(scg_builder *b, scg_uniform_slot slot);
+scg_value scg_fetch(scg_builder *b, scg_texture tex, scg_value index);
+void scg_output(scg_builder *b, scg_output_slot slot, scg_value v);
+
+scg_value scg_add(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_sub(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_mul(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_div(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_neg(scg_builder *b, scg_value x);
+scg_value scg_min(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_max(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_abs(scg_builder *b, scg_value x);
+scg_value scg_sqrt(scg_builder *b, scg_value x);
+scg_value scg_floor(scg_builder *b, scg_value x);
+scg_value scg_dot(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_cross(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_length(scg_builder *b, scg_value x);
+/* x + t (y - x), built from add/sub/mul (GLSL's mix, spelled out so that the
+ * interpreter and the GPU round the same way). */
+scg_value scg_lerp(scg_builder *b, scg_value x, scg_value y, scg_value t);
+scg_value scg_vec2(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_vec3(scg_builder *b, scg_value x, scg_value y, scg_value z);
+scg_value scg_vec4(scg_builder *b, scg_value x, scg_value y, scg_value z,
+                   scg_value w);
+scg_value scg_comp(scg_builder *b, scg_value v, int component);
+scg_value scg_lt(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_le(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_eq(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_ne(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_and(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_or(scg_builder *b, scg_value x, scg_value y);
+scg_value scg_not(scg_builder *b, scg_value x);
+scg_value scg_select(scg_builder *b, scg_value cond, scg_value x, scg_value y);
+scg_value scg_i2f(scg_builder *b, scg_value x);
+scg_value scg_f2i(scg_builder *b, scg_value x);
+
+/* Variables: `init` may be 0; `array_length` 0 for a plain variable. */
+scg_value scg_var(scg_builder *b, scg_type type, int array_length, scg_value init);
+scg_value scg_load(scg_builder *b, scg_value var);
+scg_value scg_load_at(scg_builder *b, scg_value var, scg_value index);
+void scg_store(scg_builder *b, scg_value var, scg_value v);
+void scg_store_at(scg_builder *b, scg_value var, scg_value index, scg_value v);
+
+void scg_if(scg_builder *b, scg_value cond);
+void scg_else(scg_builder *b);
+void scg_endif(scg_builder *b);
+/* Returns the loop counter (int, 0 … count-1). */
+scg_value scg_loop(scg_builder *b, scg_value count);
+void scg_break(scg_builder *b);
+void scg_endloop(scg_builder *b);
+
+/* ---- validation, listing ---- */
+/* Checks operand order and scoping, types of every operand, block nesting,
+ * slots and array lengths. On failure fills err with the instruction number
+ * and what is wrong, and returns SC_FAIL. */
+int scg_validate(const scg_program *prog, sc_error *err);
+/* Readable listing, one instruction a line, blocks indented:
+ *   v12 Su:vec3 = sub v9, v7 */
+void scg_dump_ir(FILE *f, const scg_program *prog);
+
+/* ---- passes: each returns true when it changed the program ---- */
+bool scg_opt_fold(scg_program *prog);   /* constant folding, identities */
+bool scg_opt_cse(scg_program *prog);    /* common subexpressions (scoped) */
+bool scg_opt_dce(scg_program *prog);    /* dead code and unused variables */
+/* Removes NOP instructions and renumbers values (used by the passes). */
+void scg_compact(scg_program *prog);
+
+/* ---- building a program for a key ---- */
+/* Called after every stage: "build" first, then after each pass that made
+ * progress ("fold", "cse", "dce"), with the program as it then is. */
+typedef void (*scg_stage_fn)(const char *stage, const scg_program *prog,
+                             void *user);
+
+/* Runs the pass list to a fixed point, validating after every pass. */
+int scg_optimize(scg_program *prog, scg_stage_fn on_stage, void *user,
+                 sc_error *err);
+/* Builds the key's program with its metaprogram (unoptimised) and validates
+ * it. Fails with a clear message for keys naming what is not implemented
+ * (err->key is set to the key's text). */
+int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err);
+/* Build, validate, optimise: the program the emitter prints. */
+int scg_build_program(const scg_key *key, scg_program **out, sc_error *err);
+/* Same, calling on_stage after the build and after each pass (for
+ * `--dump-ir`). */
+int scg_compile_stages(const scg_key *key, scg_stage_fn on_stage, void *user,
+                       scg_program **out, sc_error *err);
+
+/* ---- interpreter ----
+ * Runs a program on the CPU in single precision, as a GPU would: float
+ * arithmetic rounded after every operation (no fused multiply-add), the
+ * same operation order as the generated GLSL. Textures are the arrays of
+ * the GPU layout (gpu_layout.h). */
+typedef struct scg_interp_env {
+    float inputs[SCG_INPUT_COUNT][4];     /* by scg_input_slot; ints as float */
+    float uniforms[SCG_UNIFORM_COUNT][4]; /* by scg_uniform_slot */
+    const float *texels[SCG_TEXTURE_COUNT]; /* texel data, 4 or 1 floats each */
+    int texel_count[SCG_TEXTURE_COUNT];
+} scg_interp_env;
+
+typedef struct scg_interp_result {
+    float outputs[SCG_OUTPUT_COUNT][4];   /* by scg_output_slot; bool/int as
+                                             float 0/1/n */
+    bool written[SCG_OUTPUT_COUNT];
+    long long steps;                      /* instructions executed */
+} scg_interp_result;
+
+typedef struct scg_interp scg_interp;
+/* Prepares a program for repeated runs (jump targets, register file). The
+ * program must stay alive and unchanged while the interpreter is used. */
+int scg_interp_create(const scg_program *prog, scg_interp **out, sc_error *err);
+void scg_interp_free(scg_interp *it);
+/* One invocation (one pixel). Fails on a fetch outside a texture or a loop
+ * that does not end, naming the instruction. */
+int scg_interp_run(scg_interp *it, const scg_interp_env *env,
+                   scg_interp_result *res, sc_error *err);
+
+#endif

@@ -1,0 +1,124 @@
+/* key.h — variant keys: the name of one generated program. A key has one
+ * canonical text form in [a-z0-9._-], every field always present in a fixed
+ * order, which serves as cache key and file name and parses back exactly:
+ *
+ *   bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade
+ *   bez3x3-poly-dc-fast2i16-newton-mid-it4-tol0.25-ert0-out.shade
+ *   <kind><du>x<dv>-<poly|rat>-<eval>-<trim>-<method>-<start>-it<N>-tol<T>-ert<E>-out.<o1>[.<o2>…]
+ *
+ * Full grammar and the meaning of every value: docs/variant-key.md. Values
+ * that later work will implement (triangular patches, Broyden,
+ * Bézier clipping, subdivision, hybrid, view-dependent starts) parse, so
+ * that the form is stable, but scg_key_check refuses them. */
+#ifndef SCG_KEY_H
+#define SCG_KEY_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "sc_base.h"
+
+#define SCG_MAX_DEGREE 16     /* highest degree in either direction */
+#define SCG_MAX_ITERS 64
+#define SCG_MAX_TRIM_ITERS 64 /* cap on clipping iterations per crossing */
+#define SCG_DEFAULT_TRIM_ITERS 16
+#define SCG_KEY_MAX 128       /* buffer size for a formatted key */
+
+typedef enum scg_patch_kind {
+    SCG_PATCH_BEZIER = 0,     /* "bez": tensor Bézier patch */
+    SCG_PATCH_NURBS,          /* "nurbs": tensor NURBS, de Boor from knots */
+    SCG_PATCH_TRIANGLE        /* "tri": triangular Bézier (reserved) */
+} scg_patch_kind;
+
+typedef enum scg_eval_form {
+    SCG_EVAL_DC = 0,          /* "dc": de Casteljau / de Boor, unrolled */
+    SCG_EVAL_BASIS,           /* "bern": Bernstein basis sums, unrolled */
+    SCG_EVAL_LOOP             /* "loop": generic program, runtime loops over
+                                 degrees read from the record; degrees are
+                                 written "dyn" (bezdyn, nurbsdyn) */
+} scg_eval_form;
+
+/* Trimming (docs/trimming.md). Every trimmed form is written
+ * <mode><N>i<C>: N the highest trim-piece degree (pieces of lower degree
+ * are degree-elevated to N when packed), C the cap on Bézier-clipping
+ * iterations per crossing (1 … SCG_MAX_TRIM_ITERS). */
+typedef enum scg_trim_mode {
+    SCG_TRIM_NONE = 0,        /* "trim0": untrimmed */
+    SCG_TRIM_CLIP,            /* "clipNiC": every piece, two-sided iterative
+                                 Bézier clipping */
+    SCG_TRIM_FAST,            /* "fastNiC": v slabs found by binary search,
+                                 a binary search over the slab's pieces
+                                 ordered in u; two-sided clipping */
+    SCG_TRIM_LEFT             /* "leftNiC": every piece, left-only clipping */
+} scg_trim_mode;
+
+typedef enum scg_method {
+    SCG_METHOD_NEWTON = 0,    /* "newton" */
+    SCG_METHOD_BROYDEN,       /* "broyden" (reserved) */
+    SCG_METHOD_BCLIP,         /* "bclip" (reserved) */
+    SCG_METHOD_SUBDIV,        /* "subdiv" (reserved) */
+    SCG_METHOD_HYBRID         /* "hybrid" (reserved) */
+} scg_method;
+
+typedef enum scg_start {
+    SCG_START_MID = 0,        /* "mid": centre of the sub-patch domain */
+    SCG_START_CP,             /* "cp": interpolated hull-vertex parameters */
+    SCG_START_VIEW            /* "view": view-dependent (reserved) */
+} scg_start;
+
+typedef enum scg_ert {
+    SCG_ERT_NONE = 0,         /* "ert0" */
+    SCG_ERT_BEFORE,           /* "ert1": skip the ray when the hull lies
+                                 behind the nearest surface so far */
+    SCG_ERT_BOTH              /* "ert2": also drop a hit behind it */
+} scg_ert;
+
+/* Output bits; the text lists the set ones in this order, joined by '.'. */
+enum {
+    SCG_OUTPUT_SHADE = 1 << 0,   /* "shade": shaded colour */
+    SCG_OUTPUT_AOV = 1 << 1,     /* "aov": depth, uv, surface id, normal… */
+    SCG_OUTPUT_ITERS = 1 << 2,   /* "iters": iteration-count debug view */
+    SCG_OUTPUT_UVVIEW = 1 << 3,  /* "uv": (u, v) debug colour */
+    SCG_OUTPUT_ALL = (1 << 4) - 1
+};
+
+typedef struct scg_key {
+    scg_patch_kind kind;
+    int deg_u, deg_v;         /* 1 … SCG_MAX_DEGREE; 0 with SCG_EVAL_LOOP */
+    bool rational;
+    scg_eval_form eval;
+    scg_trim_mode trim;
+    int trim_degree;          /* 1 … SCG_MAX_DEGREE when trimmed, else 0 */
+    int trim_iters;           /* 1 … SCG_MAX_TRIM_ITERS when trimmed, else 0 */
+    scg_method method;
+    scg_start start;
+    int max_iters;            /* 1 … SCG_MAX_ITERS */
+    int tol_milli;            /* tolerance in 1/1000 pixel footprint, >= 1 */
+    scg_ert ert;
+    unsigned outputs;         /* SCG_OUTPUT_* bits, at least one */
+} scg_key;
+
+/* The default key for a degree pair: polynomial, de Casteljau, untrimmed,
+ * Newton from the midpoint, 4 iterations, 0.25 px, no early ray
+ * termination, shaded output. */
+void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v);
+
+/* Canonical text into buf (SCG_KEY_MAX bytes are always enough). */
+const char *scg_key_format(const scg_key *key, char *buf, size_t size);
+
+/* Parses the canonical form. Malformed or non-canonical text fails with a
+ * message naming the field and, where there is one, the canonical spelling.
+ * Reserved values parse (see scg_key_check). */
+int scg_key_parse(const char *text, scg_key *key, sc_error *err);
+
+/* SC_OK when the compiler can build the key; otherwise a message naming
+ * the reserved value ("Broyden's method (broyden) is not implemented yet")
+ * or the inconsistent combination. */
+int scg_key_check(const scg_key *key, sc_error *err);
+
+/* Tolerance in pixel footprints. */
+float scg_key_tolerance(const scg_key *key);
+
+bool scg_key_equal(const scg_key *a, const scg_key *b);
+
+#endif

@@ -1,0 +1,77 @@
+/* scene_keys.c — from surfaces to variant keys. Default GPU path: extract
+ * Bézier patches. Unrolled de Casteljau needs no knot texture, no span
+ * search and no per-iteration fetches (the points are fetched and projected
+ * onto the ray's planes once), and the hulls are built per sub-patch of a
+ * patch anyway; the price is more control points in GPU memory for surfaces
+ * with many spans, which `nurbs_direct` avoids. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_keys.h"
+#include "trim_pack.h"
+
+enum { DEFAULT_GENERIC_ABOVE = 7 };
+
+void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key)
+{
+    sc_key_options defaults;
+    memset(&defaults, 0, sizeof defaults);
+    if (!opts)
+        opts = &defaults;
+    bool one_patch = s->nu == s->deg_u + 1 && s->nv == s->deg_v + 1;
+    scg_patch_kind kind = opts->nurbs_direct && !one_patch ? SCG_PATCH_NURBS : SCG_PATCH_BEZIER;
+    scg_key_default(key, kind, s->deg_u, s->deg_v);
+    int generic_above = opts->generic_above > 0 ? opts->generic_above : DEFAULT_GENERIC_ABOVE;
+    if (s->deg_u > generic_above || s->deg_v > generic_above) {
+        key->eval = SCG_EVAL_LOOP;
+        key->deg_u = key->deg_v = 0;
+    }
+    key->rational = s->rational != 0;
+    int tdeg = opts->ignore_trims ? 0 : sc_surface_trim_degree(s);
+    if (s->nloops > 0 && tdeg > 0) {
+        key->trim = opts->trim_method == SCG_TRIM_NONE ? SCG_TRIM_FAST : opts->trim_method;
+        key->trim_degree = tdeg > SCG_MAX_DEGREE ? SCG_MAX_DEGREE : tdeg;
+        key->trim_iters = opts->trim_iters > 0 ? opts->trim_iters : SCG_DEFAULT_TRIM_ITERS;
+    }
+    if (opts->max_iters > 0)
+        key->max_iters = opts->max_iters;
+    if (opts->tol_milli > 0)
+        key->tol_milli = opts->tol_milli;
+    key->start = opts->start;
+    key->ert = opts->ert;
+    if (opts->outputs)
+        key->outputs = opts->outputs;
+}
+
+static int compare_keys(const void *a, const void *b) { return strcmp(a, b); }
+
+int sc_scene_keys(const sc_scene *scene, const sc_key_options *opts,
+                  char (**keys)[SCG_KEY_MAX], int *count, sc_error *err)
+{
+    *keys = NULL;
+    *count = 0;
+    if (scene->nsurfaces == 0)
+        return SC_OK;
+    char (*all)[SCG_KEY_MAX] = sc_alloc((size_t)scene->nsurfaces, SCG_KEY_MAX);
+    for (int i = 0; i < scene->nsurfaces; i++) {
+        const sc_surface *s = &scene->surfaces[i];
+        if (s->deg_u < 1 || s->deg_v < 1 || s->deg_u > SCG_MAX_DEGREE ||
+            s->deg_v > SCG_MAX_DEGREE) {
+            free(all);
+            return sc_fail(err, scene->source, 0,
+                           "surface %d (%s): degree %d×%d outside 1…%d", i, s->name, s->deg_u,
+                           s->deg_v, SCG_MAX_DEGREE);
+        }
+        scg_key key;
+        sc_surface_key(s, opts, &key);
+        scg_key_format(&key, all[i], SCG_KEY_MAX);
+    }
+    qsort(all, (size_t)scene->nsurfaces, SCG_KEY_MAX, compare_keys);
+    int n = 0;
+    for (int i = 0; i < scene->nsurfaces; i++)
+        if (n == 0 || strcmp(all[n - 1], all[i]) != 0)
+            memmove(all[n++], all[i], SCG_KEY_MAX);
+    *keys = all;
+    *count = n;
+    return SC_OK;
+}

@@ -1,0 +1,44 @@
+/* scene_keys.h — the runtime side of variant keys: which key each surface
+ * of a scene needs, and the distinct keys of a whole scene, so that the
+ * runtime compiles exactly those and never a cross product. */
+#ifndef SC_SCENE_KEYS_H
+#define SC_SCENE_KEYS_H
+
+#include "key.h"
+#include "scene.h"
+
+typedef struct sc_key_options {
+    /* 0 (default): surfaces are drawn as extracted Bézier patches (`bez`
+     * keys); 1: whole NURBS surfaces with de Boor from the knot texture
+     * (`nurbs` keys). A surface that is one Bézier patch is `bez` either way. */
+    int nurbs_direct;
+    /* Surfaces with a degree above this use the generic program (`loop`,
+     * degrees `dyn`); 0 means the default, 7. */
+    int generic_above;
+    /* 1: ignore trim loops (keys say trim0). Default 0: a trimmed surface
+     * asks for trimming with its highest trim-curve degree. */
+    int ignore_trims;
+    /* Trim method of trimmed surfaces: SCG_TRIM_FAST (the default, also
+     * for SCG_TRIM_NONE), SCG_TRIM_CLIP or SCG_TRIM_LEFT; and the cap on
+     * clipping iterations per crossing, 0 meaning SCG_DEFAULT_TRIM_ITERS.
+     * docs/trimming.md has the measurements behind the defaults. */
+    scg_trim_mode trim_method;
+    int trim_iters;
+    /* The remaining fields are copied into every key; 0 means the default
+     * of scg_key_default (it4, tol0.25, mid, ert0, out.shade). */
+    int max_iters;
+    int tol_milli;
+    scg_start start;
+    scg_ert ert;
+    unsigned outputs;
+} sc_key_options;
+
+/* The key surface s needs under opts (NULL: defaults). */
+void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key);
+
+/* The distinct keys of a scene, in canonical text, sorted: *keys is a new
+ * array of *count entries (free with free()); an empty scene gives 0. */
+int sc_scene_keys(const sc_scene *scene, const sc_key_options *opts,
+                  char (**keys)[SCG_KEY_MAX], int *count, sc_error *err);
+
+#endif
