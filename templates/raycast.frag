@@ -1,0 +1,36 @@
+{{HEADER}}
+#version 450 core
+
+// Inputs from the vertex stage; locations below 8 are the IR's inputs
+// (gpu_layout.h), 8 and up belong to this skeleton.
+{{INPUTS}}
+layout(location = 8) flat in vec3 sc_centre;
+{{COLOUR_INPUT}}
+
+// Explicit locations: SPIR-V for OpenGL refuses default-block uniforms
+// without them.
+layout(location = 16) uniform mat4 sc_view_projection;
+{{UNIFORMS}}
+
+{{TEXTURES}}
+
+{{OUTPUTS}}
+
+{{GLOBALS}}
+{{INTERSECT_FUNCTION}}
+
+{{FUNCTIONS}}
+void main()
+{
+    {{PREPARE}}
+    {{RESULTS}}
+    {{CALL}}
+    if (!hit)
+        discard;
+
+    // Depth of the hit, not of the hull: hulls overlap where surfaces do not.
+    // The depth range is the default [0, 1] (gl_DepthRange is not in SPIR-V).
+    vec4 clip = sc_view_projection * vec4(point + sc_centre, 1.0);
+    gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+    {{WRITE_OUTPUTS}}
+}
