@@ -5,7 +5,10 @@
 #include <stdio.h>
 
 #include "commands.h"
+#include <stdlib.h>
+
 #include "io.h"
+#include "scene_keys.h"
 
 static const char usage[] =
     "usage: splinecast info SCENE\n"
@@ -15,7 +18,8 @@ static const char usage[] =
     "  surface I deg P Q rational 0|1 ctrl NU NV loops L segments S   (one per surface)\n"
     "  skipped TYPE N REASON      (what the reader did not turn into surfaces)\n"
     "  dropped_loops N            (when trim loops were dropped by validation)\n"
-    "  bbox X0 Y0 Z0 X1 Y1 Z1     (world space, of the control points)\n";
+    "  bbox X0 Y0 Z0 X1 Y1 Z1     (world space, of the control points)\n"
+    "  key K                      (each distinct variant key the scene needs, sorted)\n";
 
 int cmd_info(int argc, char **argv)
 {
@@ -46,6 +50,12 @@ int cmd_info(int argc, char **argv)
     double lo[3], hi[3];
     sc_scene_bounds(&scene, lo, hi);
     printf("bbox %.17g %.17g %.17g %.17g %.17g %.17g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    char(*keys)[SCG_KEY_MAX] = NULL;
+    int nkeys = 0;
+    int status = sc_scene_keys(&scene, NULL, &keys, &nkeys, &err);
+    for (int k = 0; k < nkeys; k++)
+        printf("key %s\n", keys[k]);
+    free(keys);
     sc_scene_free(&scene);
-    return 0;
+    return status ? cli_report(&err) : 0;
 }

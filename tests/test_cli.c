@@ -1,0 +1,52 @@
+/* test_cli.c — the command line as a whole: the top-level help, unknown
+ * commands, and the variant keys `info` lists for a scene. */
+#include <stdlib.h>
+
+#include "test.h"
+
+TEST(cli_top_level_help)
+{
+    char cmd[1024], *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s --help", test_cli);
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    CHECK_CONTAINS(out, "usage: splinecast COMMAND");
+    CHECK_CONTAINS(out, "info");
+    free(out);
+    char *err = NULL;
+    snprintf(cmd, sizeof cmd, "%s frobnicate", test_cli);
+    CHECK_INT(test_run(cmd, NULL, &err), 2);
+    CHECK_CONTAINS(err, "unknown command 'frobnicate'");
+    free(err);
+}
+
+/* The keys of a scene are exactly its distinct (degree, rational)
+ * combinations: derive them from the `surface` lines and compare. */
+TEST(cli_info_keys_are_distinct_surface_kinds)
+{
+    char cmd[1024], *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s info %s/examples/scenes/mixed.obj", test_cli, test_root_dir);
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    char want[16][64];
+    int nwant = 0, nkeys = 0;
+    for (char *line = strtok(out, "\n"); line; line = strtok(NULL, "\n")) {
+        int i, p, q, r;
+        if (sscanf(line, "surface %d deg %d %d rational %d", &i, &p, &q, &r) == 4) {
+            char k[64];
+            snprintf(k, sizeof k, "key bez%dx%d-%s-", p, q, r ? "rat" : "poly");
+            int seen = 0;
+            for (int j = 0; j < nwant; j++)
+                seen |= !strcmp(want[j], k);
+            if (!seen && nwant < 16)
+                strcpy(want[nwant++], k);
+        } else if (!strncmp(line, "key ", 4)) {
+            int found = 0;
+            for (int j = 0; j < nwant; j++)
+                found |= !strncmp(line, want[j], strlen(want[j]));
+            CHECK(found);
+            nkeys++;
+        }
+    }
+    CHECK(nwant >= 3);
+    CHECK_INT(nkeys, nwant);
+    free(out);
+}
