@@ -81,6 +81,9 @@ static void describe_key(scg_text *out, const scg_key *key)
     if (key->trim == SCG_TRIM_CLIP)
         snprintf(trim, sizeof trim, "trimmed by Bezier clipping (curves of degree <= %d)",
                  key->trim_degree);
+    else if (key->trim == SCG_TRIM_LEFT)
+        snprintf(trim, sizeof trim, "trimmed by left-only Bezier clipping (curves of degree <= %d)",
+                 key->trim_degree);
     else if (key->trim == SCG_TRIM_FAST)
         snprintf(trim, sizeof trim, "trimmed, accelerated (curves of degree <= %d)",
                  key->trim_degree);

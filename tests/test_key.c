@@ -36,8 +36,9 @@ TEST(key_roundtrip_random)
         k.eval = (scg_eval_form)(test_rand(&rng) * 3);
         if (k.eval == SCG_EVAL_LOOP)
             k.deg_u = k.deg_v = 0;
-        k.trim = (scg_trim_mode)(test_rand(&rng) * 3);
+        k.trim = (scg_trim_mode)(test_rand(&rng) * 4);
         k.trim_degree = k.trim ? 1 + (int)(test_rand(&rng) * SCG_MAX_DEGREE) : 0;
+        k.trim_iters = k.trim ? 1 + (int)(test_rand(&rng) * SCG_MAX_TRIM_ITERS) : 0;
         k.method = (scg_method)(test_rand(&rng) * 5);
         k.start = (scg_start)(test_rand(&rng) * 3);
         k.max_iters = 1 + (int)(test_rand(&rng) * SCG_MAX_ITERS);
@@ -125,8 +126,6 @@ TEST(key_reserved_refused)
 {
     static const struct { const char *text, *says; } cases[] = {
         {"tri3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "triangular"},
-        {"bez3x3-poly-dc-clip3-newton-mid-it4-tol0.25-ert0-out.shade", "Bézier clipping (clipN)"},
-        {"bez3x3-poly-dc-fast3-newton-mid-it4-tol0.25-ert0-out.shade", "accelerated"},
         {"bez3x3-poly-dc-trim0-broyden-mid-it4-tol0.25-ert0-out.shade", "Broyden"},
         {"bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade", "Bézier clipping (bclip)"},
         {"bez3x3-poly-dc-trim0-subdiv-mid-it4-tol0.25-ert0-out.shade", "subdivision"},

@@ -1,0 +1,397 @@
+/* trim_gen.c — the trimming metaprogram (Pabst et al. 2006, §5): is a hit's
+ * (u, v) kept by the trim loops? The parity of the crossings of the ray
+ * from (u, v) towards +u with the loops' pieces decides. The pieces are
+ * v-monotone rational Bézier curves with half-open v ranges
+ * [v_lo, v_hi) (runtime/trim_pack.c), so a ray through a shared end point,
+ * an extremum or along a horizontal run counts right, and each piece is
+ * crossed at most once.
+ *
+ * A piece whose u bounds lie on one side of the point is decided by the
+ * bounds alone. Otherwise the crossing is located by iterative Bézier
+ * clipping (§5.1–5.3) on d(t) = V(t) − v·W(t), whose sign is that of
+ * v(t) − v: the sub-curve on the current interval [a, b] is recomputed
+ * from the piece's points each iteration (two de Casteljau triangles), the
+ * convex hull of (i/N, d_i) cut with the t axis narrows [a, b] from both
+ * sides (two-sided) or from the left only (left-only), and an interval
+ * that shrinks by less than 20 % is split (Nishita et al.). Because the
+ * piece is monotone it holds the one root, so the split keeps the half
+ * where d changes sign (d at the split point by one scalar de Casteljau)
+ * and the paper's second interval of roots still to search is never
+ * needed: the state is [a, b] and the verdict. The search stops as soon as
+ * the sub-curve's u values all lie on one side of the point, which is the
+ * verdict. Defined results: at the piece's lower end v == v_lo the end
+ * point's u decides; when the hull misses the axis (rounding at an end)
+ * the end where d is nearest zero decides; when [a, b] stops shrinking in
+ * float, or the key's iteration cap is reached, the midpoint of the last
+ * sub-curve's chord decides.
+ *
+ * The hull's cut with the axis is the smallest (largest) crossing of the
+ * segments between points of opposite sign: the cut is on a hull edge,
+ * whose end points have opposite signs, and every such segment lies in the
+ * hull. Unrolled, that is N(N+1)/2 candidate crossings for degree N. */
+#include <float.h>
+
+#include "trim_gen.h"
+
+/* Nishita et al.: when a clip keeps more than this fraction of the
+ * interval, split it instead. */
+#define SPLIT_FRACTION 0.8f
+/* Rounds of the binary searches: enough for the 2^24 texels a float offset
+ * can address. */
+enum { SEARCH_ROUNDS = 24 };
+
+typedef struct trim_ctx {
+    scg_builder *b;
+    const scg_key *key;
+    int n;                     /* piece degree */
+    scg_value block, u, v;     /* int; normalised point */
+    scg_value iters_var;       /* int variable or 0 */
+} trim_ctx;
+
+static scg_value xyz_of(scg_builder *b, scg_value v)
+{
+    scg_value x = scg_comp(b, v, 0);
+    scg_value y = scg_comp(b, v, 1);
+    scg_value z = scg_comp(b, v, 2);
+    return scg_vec3(b, x, y, z);
+}
+
+static scg_value offset(scg_builder *b, scg_value base, int k)
+{
+    return k ? scg_add(b, base, scg_const_i(b, k)) : base;
+}
+
+/* De Casteljau at t of n+1 points (any float type): the control points of
+ * [0, t] into left, of [t, 1] into right (either may be NULL); returns the
+ * point at t. */
+static scg_value split(scg_builder *b, int n, const scg_value *pts, scg_value t, scg_value *left,
+                       scg_value *right)
+{
+    scg_value work[SCG_MAX_DEGREE + 1] = {0};
+    for (int i = 0; i <= n; i++)
+        work[i] = pts[i];
+    if (left)
+        left[0] = work[0];
+    if (right)
+        right[n] = work[n];
+    for (int r = 1; r <= n; r++) {
+        for (int i = 0; i <= n - r; i++)
+            work[i] = scg_lerp(b, work[i], work[i + 1], t);
+        if (left)
+            left[r] = work[0];
+        if (right)
+            right[n - r] = work[n - r];
+    }
+    return work[0];
+}
+
+/* The and of n bool values. */
+static scg_value all_of(scg_builder *b, const scg_value *x, int n)
+{
+    scg_value r = x[0];
+    for (int i = 1; i < n; i++)
+        r = scg_and(b, r, x[i]);
+    return r;
+}
+
+/* Whether the ray from (u, v) towards +u crosses the piece at texel
+ * `piece`, given v_lo <= v < v_hi and u_min <= u < u_max. */
+static scg_value piece_crosses(trim_ctx *c, scg_value piece)
+{
+    scg_builder *b = c->b;
+    int n = c->n;
+    bool two_sided = c->key->trim != SCG_TRIM_LEFT;
+    scg_value zero = scg_const_f(b, 0.0f), one = scg_const_f(b, 1.0f);
+
+    scg_name(b, "piece");
+    scg_value head = scg_fetch(b, SCG_TEX_RECORDS, piece);
+    scg_value pts[SCG_MAX_DEGREE + 1];
+    scg_value first = scg_fetch(b, SCG_TEX_RECORDS, offset(b, piece, 1));
+    pts[0] = xyz_of(b, first);
+    for (int i = 1; i <= n; i++)
+        pts[i] = xyz_of(b, scg_fetch(b, SCG_TEX_RECORDS, offset(b, piece, 1 + i)));
+    scg_value u_lo = scg_comp(b, first, 3);
+    scg_name(b, "cross");
+    scg_value cross_var = scg_var(b, SCG_BOOL, 0, scg_lt(b, c->u, u_lo));
+    scg_name(b, "clipped");
+    scg_value done_var = scg_var(b, SCG_BOOL, 0, scg_eq(b, c->v, scg_comp(b, head, 0)));
+    scg_name(b, "t_lo");
+    scg_value a_var = scg_var(b, SCG_FLOAT, 0, zero);
+    scg_name(b, "t_hi");
+    scg_value b_var = scg_var(b, SCG_FLOAT, 0, one);
+    scg_name(b, NULL);
+
+    scg_loop(b, scg_const_i(b, c->key->trim_iters));
+    scg_if(b, scg_load(b, done_var));
+    scg_break(b);
+    scg_endif(b);
+    if (c->iters_var)
+        scg_store(b, c->iters_var, scg_add(b, scg_load(b, c->iters_var), scg_const_i(b, 1)));
+    scg_value ta = scg_load(b, a_var), tb = scg_load(b, b_var);
+
+    /* The sub-curve on [a, b]: [0, b] of the piece, then its part from a/b. */
+    scg_name(b, "sub");
+    scg_value head_part[SCG_MAX_DEGREE + 1], q[SCG_MAX_DEGREE + 1];
+    split(b, n, pts, tb, head_part, NULL);
+    scg_value s = scg_div(b, ta, scg_max(b, tb, scg_const_f(b, FLT_MIN)));
+    split(b, n, head_part, s, NULL, q);
+
+    /* d_i: signed distances of the points from the ray's line (times w);
+     * e_i: their side of the point (times w). */
+    scg_value d[SCG_MAX_DEGREE + 1], e[SCG_MAX_DEGREE + 1], w[SCG_MAX_DEGREE + 1];
+    scg_value left_of[SCG_MAX_DEGREE + 1] = {0}, right_of[SCG_MAX_DEGREE + 1] = {0};
+    scg_value above[SCG_MAX_DEGREE + 1];
+    for (int i = 0; i <= n; i++) {
+        w[i] = scg_comp(b, q[i], 2);
+        scg_name(b, "d");
+        d[i] = scg_sub(b, scg_comp(b, q[i], 1), scg_mul(b, c->v, w[i]));
+        scg_name(b, "e");
+        e[i] = scg_sub(b, scg_comp(b, q[i], 0), scg_mul(b, c->u, w[i]));
+        scg_name(b, NULL);
+        left_of[i] = scg_le(b, e[i], zero);
+        right_of[i] = scg_lt(b, zero, e[i]);
+        above[i] = scg_lt(b, zero, d[i]);
+    }
+    scg_name(b, "all_left");
+    scg_value all_left = all_of(b, left_of, n + 1);
+    scg_name(b, "all_right");
+    scg_value all_right = all_of(b, right_of, n + 1);
+    /* The chord's midpoint is right of the point: u_0/w_0 + u_n/w_n > 2u. */
+    scg_name(b, "guess");
+    scg_value guess = scg_lt(b, zero, scg_add(b, scg_mul(b, e[0], w[n]), scg_mul(b, e[n], w[0])));
+    scg_name(b, "end_side");
+    scg_value end_side = scg_select(b, above[0], right_of[0], right_of[n]);
+
+    /* The hull's cut with the t axis. */
+    scg_name(b, "hull");
+    scg_value t_min = scg_const_f(b, 2.0f), t_max = scg_const_f(b, -1.0f);
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j <= n; j++) {
+            /* Opposite signs, or one point on the axis. */
+            scg_value opposite = scg_and(b, scg_le(b, scg_mul(b, d[i], d[j]), zero),
+                                         scg_ne(b, d[i], d[j]));
+            scg_value ratio = scg_div(b, d[i], scg_sub(b, d[i], d[j]));
+            scg_value x = scg_add(b, scg_const_f(b, (float)i / (float)n),
+                                  scg_mul(b, scg_const_f(b, (float)(j - i) / (float)n), ratio));
+            t_min = scg_min(b, t_min, scg_select(b, opposite, x, scg_const_f(b, 2.0f)));
+            if (two_sided)
+                t_max = scg_max(b, t_max, scg_select(b, opposite, x, scg_const_f(b, -1.0f)));
+        }
+    scg_value missed = scg_lt(b, scg_const_f(b, 1.5f), t_min);
+    scg_value lo = scg_max(b, t_min, zero);
+    scg_value hi = two_sided ? scg_min(b, t_max, one) : one;
+
+    /* Too little progress: split, keeping the half where d changes sign. */
+    scg_name(b, "split");
+    scg_value mid = scg_mul(b, scg_add(b, lo, hi), scg_const_f(b, 0.5f));
+    scg_value d_mid = split(b, n, d, mid, NULL, NULL);
+    scg_value split_now = scg_lt(b, scg_const_f(b, SPLIT_FRACTION), scg_sub(b, hi, lo));
+    scg_value rises = scg_lt(b, zero, d_mid);
+    lo = scg_select(b, scg_and(b, split_now, scg_not(b, rises)), mid, lo);
+    hi = scg_select(b, scg_and(b, split_now, rises), mid, hi);
+    scg_value width = scg_sub(b, tb, ta);
+    scg_name(b, "t_lo");
+    scg_value next_a = scg_add(b, ta, scg_mul(b, width, lo));
+    scg_name(b, "t_hi");
+    scg_value next_b = scg_add(b, ta, scg_mul(b, width, hi));
+    scg_name(b, "stalled");
+    scg_value stalled = scg_and(b, scg_eq(b, next_a, ta), scg_eq(b, next_b, tb));
+    scg_name(b, NULL);
+    scg_value decided = scg_or(b, all_left, all_right);
+    scg_value finished = scg_or(b, decided, scg_or(b, missed, stalled));
+    scg_store(b, cross_var,
+              scg_select(b, decided, all_right, scg_select(b, missed, end_side, guess)));
+    scg_store(b, done_var, finished);
+    scg_store(b, a_var, next_a);
+    scg_store(b, b_var, next_b);
+    scg_endloop(b);
+    return scg_load(b, cross_var);
+}
+
+/* Crossing of a piece whose u bounds are (u_min, u_max), in a block that
+ * already knows v lies in its range: bounds first, clipping when the point
+ * lies between them. Returns a bool value. */
+static scg_value bounded_crossing(trim_ctx *c, scg_value piece, scg_value u_min, scg_value u_max)
+{
+    scg_builder *b = c->b;
+    scg_name(b, "cross");
+    scg_value cross_var = scg_var(b, SCG_BOOL, 0, scg_lt(b, c->u, u_min));
+    scg_name(b, NULL);
+    scg_if(b, scg_and(b, scg_le(b, u_min, c->u), scg_lt(b, c->u, u_max)));
+    scg_store(b, cross_var, piece_crosses(c, piece));
+    scg_endif(b);
+    return scg_load(b, cross_var);
+}
+
+/* Odd (count + bias) keeps the point. */
+static scg_value odd(scg_builder *b, scg_value count)
+{
+    scg_value two = scg_const_i(b, 2);
+    scg_value rest = scg_sub(b, count, scg_mul(b, scg_div(b, count, two), two));
+    return scg_eq(b, rest, scg_const_i(b, 1));
+}
+
+/* Every piece of the block, in a runtime loop (clipN, leftN). */
+static scg_value crossings_all(trim_ctx *c, scg_value header, scg_value bias)
+{
+    scg_builder *b = c->b;
+    scg_name(b, "crossings");
+    scg_value count_var = scg_var(b, SCG_INT, 0, bias);
+    scg_name(b, NULL);
+    scg_value k = scg_loop(b, scg_f2i(b, scg_comp(b, header, 0)));
+    scg_name(b, "piece");
+    scg_value piece = scg_add(b, offset(b, c->block, SCG_TRIM_HEADER_TEXELS),
+                              scg_mul(b, k, scg_const_i(b, SCG_TRIM_PIECE_TEXELS(c->n))));
+    scg_value head = scg_fetch(b, SCG_TEX_RECORDS, piece);
+    scg_name(b, NULL);
+    scg_value in_range = scg_and(b, scg_le(b, scg_comp(b, head, 0), c->v),
+                                 scg_lt(b, c->v, scg_comp(b, head, 1)));
+    scg_if(b, in_range);
+    scg_value cross = bounded_crossing(c, piece, scg_comp(b, head, 2), scg_comp(b, head, 3));
+    scg_store(b, count_var, scg_add(b, scg_load(b, count_var),
+                                    scg_select(b, cross, scg_const_i(b, 1), scg_const_i(b, 0))));
+    scg_endif(b);
+    scg_endloop(b);
+    return scg_load(b, count_var);
+}
+
+/* The slab holding v by binary search over the slab table, then the
+ * number of its pieces right of the point by binary search over the
+ * pieces ordered in u (fastN). */
+static scg_value crossings_slabs(trim_ctx *c, scg_value header, scg_value bias)
+{
+    scg_builder *b = c->b;
+    scg_value one = scg_const_i(b, 1), two = scg_const_i(b, 2);
+    scg_name(b, "crossings");
+    scg_value count_var = scg_var(b, SCG_INT, 0, bias);
+    scg_name(b, "slabs");
+    scg_value slabs = scg_add(b, c->block, scg_f2i(b, scg_comp(b, header, 3)));
+    scg_value nslabs = scg_f2i(b, scg_comp(b, header, 1));
+    scg_value y_first = scg_comp(b, scg_fetch(b, SCG_TEX_RECORDS, slabs), 0);
+    scg_value y_end = scg_comp(b, scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, slabs, nslabs)), 0);
+    scg_name(b, NULL);
+    scg_if(b, scg_and(b, scg_le(b, y_first, c->v), scg_lt(b, c->v, y_end)));
+
+    /* y_lo <= v < y_hi, narrowed by halving. */
+    scg_value lo_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
+    scg_value hi_var = scg_var(b, SCG_INT, 0, nslabs);
+    scg_loop(b, scg_const_i(b, SEARCH_ROUNDS));
+    scg_value l = scg_load(b, lo_var), h = scg_load(b, hi_var);
+    scg_if(b, scg_le(b, scg_sub(b, h, l), one));
+    scg_break(b);
+    scg_endif(b);
+    scg_value mid = scg_div(b, scg_add(b, l, h), two);
+    scg_value y = scg_comp(b, scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, slabs, mid)), 0);
+    scg_value below = scg_lt(b, c->v, y);
+    scg_store(b, hi_var, scg_select(b, below, mid, h));
+    scg_store(b, lo_var, scg_select(b, below, l, mid));
+    scg_endloop(b);
+    scg_name(b, "slab");
+    scg_value slab = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, slabs, scg_load(b, lo_var)));
+    scg_value items = scg_add(b, c->block, scg_f2i(b, scg_comp(b, slab, 1)));
+    scg_value nitems = scg_f2i(b, scg_comp(b, slab, 2));
+    scg_name(b, NULL);
+
+    /* The first piece right of the point: the pieces are ordered left to
+     * right and do not cross, so "crossed" is false, then true. */
+    scg_value first_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
+    scg_value last_var = scg_var(b, SCG_INT, 0, nitems);
+    scg_loop(b, scg_const_i(b, SEARCH_ROUNDS));
+    l = scg_load(b, first_var);
+    h = scg_load(b, last_var);
+    scg_if(b, scg_le(b, h, l));
+    scg_break(b);
+    scg_endif(b);
+    mid = scg_div(b, scg_add(b, l, h), two);
+    scg_name(b, "item");
+    scg_value item = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, items, mid));
+    scg_value piece = scg_add(b, c->block, scg_f2i(b, scg_comp(b, item, 0)));
+    scg_name(b, NULL);
+    scg_value cross = bounded_crossing(c, piece, scg_comp(b, item, 1), scg_comp(b, item, 2));
+    scg_store(b, last_var, scg_select(b, cross, mid, h));
+    scg_store(b, first_var, scg_select(b, cross, l, scg_add(b, mid, one)));
+    scg_endloop(b);
+    scg_store(b, count_var, scg_add(b, bias, scg_sub(b, nitems, scg_load(b, first_var))));
+    scg_endif(b);
+    return scg_load(b, count_var);
+}
+
+scg_value scg_trim_block(scg_builder *b, scg_value record_texel3)
+{
+    scg_name(b, "trim_block");
+    scg_value block = scg_f2i(b, scg_comp(b, record_texel3, 3));
+    scg_name(b, NULL);
+    return block;
+}
+
+scg_value scg_trim_normalise(scg_builder *b, scg_value block, scg_value origin, scg_value extent,
+                             scg_value local)
+{
+    scg_value map = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, block, scg_const_i(b, 1)));
+    scg_value scale = scg_vec2(b, scg_comp(b, map, 0), scg_comp(b, map, 1));
+    scg_value shift = scg_vec2(b, scg_comp(b, map, 2), scg_comp(b, map, 3));
+    scg_name(b, "uv_trim");
+    scg_value uv;
+    if (origin) {
+        scg_value base = scg_add(b, scg_mul(b, origin, scale), shift);
+        uv = scg_add(b, base, scg_mul(b, local, scg_mul(b, extent, scale)));
+    } else {
+        uv = scg_add(b, scg_mul(b, local, scale), shift);
+    }
+    scg_name(b, NULL);
+    return uv;
+}
+
+scg_value scg_trim_kept(scg_builder *b, const scg_key *key, scg_value block, scg_value uv,
+                        scg_value iters_var)
+{
+    trim_ctx c = {.b = b, .key = key, .n = key->trim_degree, .block = block,
+                  .iters_var = iters_var};
+    c.u = scg_comp(b, uv, 0);
+    c.v = scg_comp(b, uv, 1);
+    scg_name(b, "trim_header");
+    scg_value header = scg_fetch(b, SCG_TEX_RECORDS, block);
+    scg_value bias = scg_f2i(b, scg_comp(b, header, 2));
+    scg_name(b, NULL);
+    scg_value count = key->trim == SCG_TRIM_FAST ? crossings_slabs(&c, header, bias)
+                                                 : crossings_all(&c, header, bias);
+    scg_name(b, "kept");
+    scg_value kept = odd(b, count);
+    scg_name(b, NULL);
+    return kept;
+}
+
+int scg_build_trim_probe(const scg_key *key, scg_program **out, sc_error *err)
+{
+    *out = NULL;
+    if (scg_key_check(key, err) != SC_OK)
+        return SC_FAIL;
+    if (key->trim == SCG_TRIM_NONE) {
+        char text[SCG_KEY_MAX];
+        scg_key_format(key, text, sizeof text);
+        int e = sc_fail(err, NULL, 0, "variant key '%s': the trim probe needs a trimmed key", text);
+        if (err)
+            snprintf(err->key, sizeof err->key, "%s", text);
+        return e;
+    }
+    scg_program *prog = scg_program_create(key);
+    scg_builder b;
+    scg_builder_init(&b, prog);
+    scg_value rec = scg_mul(&b, scg_input(&b, SCG_IN_RECORD), scg_const_i(&b, SCG_RECORD_TEXELS));
+    scg_value texel3 = scg_fetch(&b, SCG_TEX_RECORDS, scg_add(&b, rec, scg_const_i(&b, 3)));
+    scg_value block = scg_trim_block(&b, texel3);
+    scg_name(&b, "iters");
+    scg_value iters = scg_var(&b, SCG_INT, 0, scg_const_i(&b, 0));
+    scg_name(&b, NULL);
+    scg_value uv = scg_trim_normalise(&b, block, 0, 0, scg_input(&b, SCG_IN_UV0));
+    scg_value kept = scg_trim_kept(&b, key, block, uv, iters);
+    scg_output(&b, SCG_OUT_HIT, kept);
+    scg_output(&b, SCG_OUT_UV, uv);
+    scg_output(&b, SCG_OUT_ITERS, scg_load(&b, iters));
+    if (scg_validate(prog, err) != SC_OK || scg_optimize(prog, NULL, NULL, err) != SC_OK) {
+        scg_program_free(prog);
+        return SC_FAIL;
+    }
+    *out = prog;
+    return SC_OK;
+}
