@@ -6,9 +6,14 @@
  *
  * Self-crossings are found on a polyline flattened to FLAT_TOL of the
  * domain size; its segments are binned in a uniform grid so that loops of
- * thousands of pieces are not tested pair by pair. */
+ * thousands of pieces are not tested pair by pair. Whether a crossing
+ * counts depends only on the loop's shape, never on what was repaired, so
+ * that validating a validated loop (a scene written and read back) changes
+ * nothing. */
 #include "nurbs.h"
 
+#include <assert.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,9 +22,11 @@
 /* Gaps relative to the domain size (the larger extent of u and v). */
 static const double GAP_SILENT = 1e-9;
 static const double GAP_REPAIR = 1e-3;
-/* Crossings between the curves meeting at a closed gap, within this many
- * gap lengths of it, are the rounding of a sharp corner (see junction). */
-static const double CORNER_GAPS = 10;
+/* A crossing that cuts off a lobe through a curve junction no longer than
+ * CORNER_LOBE of the domain size and CORNER_SHARE of the rest of the loop
+ * is the rounding of a sharp corner (see corner_lobe). */
+static const double CORNER_LOBE = 1e-3;
+static const double CORNER_SHARE = 1e-2;
 /* Chordal tolerance of the flattened loop, relative to the domain size. */
 static const double FLAT_TOL = 1e-6;
 /* Subdivision depth per Bézier segment, and vertices per loop, beyond
@@ -44,6 +51,18 @@ static void set_end_point(sc_curve *c, int last, const double at[2])
     P[1] = at[1] * P[2];
 }
 
+/* Ends that differ only by the rounding of set_end_point (at most 2 units
+ * in the last place each way, whatever the weights): moving them again
+ * would change nothing but the last bits, and would make a second
+ * validation alter what the first one left. */
+static int agree_to_rounding(const double a[2], const double b[2])
+{
+    for (int k = 0; k < 2; k++)
+        if (fabs(a[k] - b[k]) > 4 * DBL_EPSILON * fmax(fabs(a[k]), fabs(b[k])))
+            return 0;
+    return 1;
+}
+
 static void make_line(sc_curve *c, const double a[2], const double b[2])
 {
     sc_curve_alloc(c, 2, 1, 2);
@@ -59,6 +78,11 @@ typedef struct polyline {
     double *xy;   /* 2 per vertex */
     int *curve;   /* curve index of the segment starting at each vertex */
     int n, cap;
+    /* Filled once the loop is complete (measure_loop): arc length from
+     * vertex 0 to vertex k (arc[n]: the whole loop), and the number of
+     * vertices 1..k where one curve ends and the next begins. */
+    double *arc;
+    int *junctions;
 } polyline;
 
 /* Consecutive equal vertices are merged: the crossing test below relies on
@@ -222,52 +246,50 @@ static int segments_cross(const polyline *pl, int i, int j, double at[2])
     return (tq0 < arc) != (tq1 < arc);
 }
 
-/* ---- where curves meet ---- */
+/* ---- corners ---- */
 
-/* The place after curve k of the loop as read where it meets curve k+1:
- * the curves around it once gaps are closed (two, or three with a repair
- * segment between) and a radius. Curves meeting at a sharp corner with a
- * gap can cross each other within a few gap lengths of it (the repair
- * segment may run backwards): such crossings enclose no area worth
- * trimming and do not make the loop cross itself. */
-typedef struct junction {
-    int curves[3], ncurves;
-    double at[2], radius;
-} junction;
+static void measure_loop(polyline *pl)
+{
+    int n = pl->n;
+    pl->arc = sc_alloc((size_t)n + 1, sizeof(double));
+    pl->junctions = sc_alloc((size_t)n + 1, sizeof(int));
+    for (int k = 1; k <= n; k++) {
+        const double *a = vertex(pl, k - 1), *b = vertex(pl, k);
+        pl->arc[k] = pl->arc[k - 1] + hypot(b[0] - a[0], b[1] - a[1]);
+        pl->junctions[k] = pl->junctions[k - 1] + (k < n && pl->curve[k] != pl->curve[k - 1]);
+    }
+}
 
-/* A loop after closing its gaps: for each curve, its index in the loop as
- * read, or -1 - k for the segment closing the gap after curve k; one
- * junction per curve as read. */
+/* A crossing of segments i < j at `at` splits the loop into two lobes: from
+ * `at` along i+1 .. j back to `at`, and the rest. Where two curves meet at
+ * a sharp corner, rounding in the file (or a straight segment closing a gap
+ * there, which may run backwards) can make them cross just beside the
+ * corner, cutting off a lobe that holds the corner and encloses next to
+ * nothing. Such a crossing is accepted: the shorter lobe passes through a
+ * junction of curves (vertex 0 always is one: the last curve ends there),
+ * is at most CORNER_LOBE of the domain size and at most CORNER_SHARE of the
+ * other lobe. A figure-eight has two large lobes; a curve crossing itself
+ * away from its ends has a lobe without a junction. Only the loop's shape
+ * counts, so the answer is the same before and after gaps are closed. */
+static int corner_lobe(const polyline *pl, int i, int j, const double at[2], double size)
+{
+    assert(i < j);
+    const double *a = vertex(pl, i), *c = vertex(pl, j);
+    double from = pl->arc[i] + hypot(at[0] - a[0], at[1] - a[1]);
+    double to = pl->arc[j] + hypot(at[0] - c[0], at[1] - c[1]);
+    double inner = to - from, outer = pl->arc[pl->n] - inner;
+    double lobe = fmin(inner, outer);
+    int through_junction = inner < outer ? pl->junctions[j] > pl->junctions[i] : 1;
+    double rest = inner + outer - lobe;
+    return through_junction && lobe <= CORNER_LOBE * size && lobe <= CORNER_SHARE * rest;
+}
+
+/* For each curve of a loop after closing its gaps: its index in the loop as
+ * read, or -1 - k for the segment closing the gap after curve k (for
+ * messages). */
 typedef struct loop_layout {
     int *origin;
-    junction *junctions;
-    int njunctions;
 } loop_layout;
-
-static int junction_has(const junction *jn, int curve)
-{
-    for (int k = 0; k < jn->ncurves; k++)
-        if (jn->curves[k] == curve)
-            return 1;
-    return 0;
-}
-
-/* A crossing of curves a and b (different) at `at` that is only the
- * rounding of a corner between them. */
-static int corner_crossing(const loop_layout *lay, int a, int b, const double at[2])
-{
-    int o = lay->origin[a], n = lay->njunctions;
-    int candidates[2] = {o >= 0 ? o : -1 - o, o >= 0 ? (o - 1 + n) % n : -1};
-    for (int k = 0; k < 2; k++) {
-        if (candidates[k] < 0)
-            continue;
-        const junction *jn = &lay->junctions[candidates[k]];
-        if (junction_has(jn, a) && junction_has(jn, b) &&
-            hypot(at[0] - jn->at[0], at[1] - jn->at[1]) <= jn->radius)
-            return 1;
-    }
-    return 0;
-}
 
 static const char *curve_name(const loop_layout *lay, int curve, char *buf, size_t size)
 {
@@ -326,10 +348,9 @@ static void cover_cells(const grid *g, const double *a, const double *b, int seg
 }
 
 /* Finds a crossing between two segments of the closed polyline that are
- * not neighbours (corner crossings excepted); returns 1, the two segment
+ * not neighbours (corner lobes excepted); returns 1, the two segment
  * indices and the crossing point. */
-static int find_crossing(const polyline *pl, const loop_layout *lay, int *seg_a, int *seg_b,
-                         double at[2])
+static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b, double at[2])
 {
     int n = pl->n;
     if (n < 4)
@@ -368,14 +389,16 @@ static int find_crossing(const polyline *pl, const loop_layout *lay, int *seg_a,
         for (int x = g.start[c]; x < g.start[c + 1] && !found; x++)
             for (int y = x + 1; y < g.start[c + 1]; y++) {
                 int i = g.entries[x], j = g.entries[y];
-                int gap = abs(i - j);
-                if (gap <= 1 || gap == n - 1)
+                if (i > j) {
+                    int t = i;
+                    i = j;
+                    j = t;
+                }
+                if (j - i <= 1 || j - i == n - 1)
                     continue;
-                if (segments_cross(pl, i, j, at) &&
-                    (pl->curve[i] == pl->curve[j] ||
-                     !corner_crossing(lay, pl->curve[i], pl->curve[j], at))) {
-                    *seg_a = i < j ? i : j;
-                    *seg_b = i < j ? j : i;
+                if (segments_cross(pl, i, j, at) && !corner_lobe(pl, i, j, at, size)) {
+                    *seg_a = i;
+                    *seg_b = j;
                     found = 1;
                     break;
                 }
@@ -421,38 +444,26 @@ static int close_gaps(const loop_site *site, sc_loop *loop, double size, loop_la
             repairs++;
     sc_curve *curves = sc_alloc((size_t)(n + repairs), sizeof(sc_curve));
     lay->origin = sc_alloc((size_t)(n + repairs), sizeof(int));
-    lay->junctions = sc_alloc((size_t)n, sizeof(junction));
-    lay->njunctions = n;
     int out = 0;
     for (int k = 0; k < n; k++) {
         sc_curve *cur = &loop->curves[k], *next = &loop->curves[(k + 1) % n];
         double a[2], b[2];
         end_point(cur, 1, a);
         end_point(next, 0, b);
-        junction *jn = &lay->junctions[k];
-        jn->at[0] = 0.5 * (a[0] + b[0]);
-        jn->at[1] = 0.5 * (a[1] + b[1]);
-        jn->radius = CORNER_GAPS * gaps[k] * size + FLAT_TOL * size;
-        jn->curves[jn->ncurves++] = out;
         lay->origin[out] = k;
         curves[out++] = *cur;
         if (gaps[k] > GAP_SILENT) {
-            jn->curves[jn->ncurves++] = out;
             lay->origin[out] = -1 - k;
             make_line(&curves[out++], a, b);
             site->scene->repaired_gaps++;
             sc_log(SC_LOG_WARN, LOOP_FMT ": gap of %.3g of the domain size after curve %d "
                    "closed with a straight segment", LOOP_ARGS(site), gaps[k], k);
-        } else if (gaps[k] > 0) {
+        } else if (!agree_to_rounding(a, b)) {
             /* `curves` holds the same point arrays as loop->curves. */
-            set_end_point(cur, 1, jn->at);
-            set_end_point(next, 0, jn->at);
+            double mid[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+            set_end_point(cur, 1, mid);
+            set_end_point(next, 0, mid);
         }
-    }
-    /* The curve after each junction, now that all indices are known. */
-    for (int k = 0; k < n; k++) {
-        junction *jn = &lay->junctions[k];
-        jn->curves[jn->ncurves++] = k + 1 < n ? lay->junctions[k + 1].curves[0] : 0;
     }
     free(loop->curves);
     loop->curves = curves;
@@ -488,9 +499,10 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
 {
     polyline pl = {0};
     flatten_loop(loop, FLAT_TOL * size, &pl);
+    measure_loop(&pl);
     int a, b;
     double at[2];
-    int crossing = find_crossing(&pl, lay, &a, &b, at);
+    int crossing = find_crossing(&pl, size, &a, &b, at);
     if (crossing) {
         char name_a[64], name_b[64];
         sc_log(SC_LOG_WARN, LOOP_FMT " dropped: it crosses itself (%s and %s, near u=%.6g "
@@ -499,6 +511,8 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
     }
     free(pl.xy);
     free(pl.curve);
+    free(pl.arc);
+    free(pl.junctions);
     return !crossing;
 }
 
@@ -529,7 +543,6 @@ void sc_scene_validate_loops(sc_scene *scene)
             int keep = check_curves(&site, loop) && close_gaps(&site, loop, size, &lay) &&
                        check_simple(&site, loop, &lay, size);
             free(lay.origin);
-            free(lay.junctions);
             if (keep) {
                 s->loops[kept++] = *loop;
                 continue;

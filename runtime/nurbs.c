@@ -7,7 +7,8 @@
  * rule for derivatives). Algorithms after Piegl & Tiller, The NURBS Book:
  * span search A2.1, basis A2.2/A2.3, insertion A5.1/A5.3, refinement
  * A5.4/A5.5, Bézier extraction by refinement, degree elevation by Bézier
- * segments and exact knot removal (A5.8's two-sided recursion). */
+ * segments and exact knot removal (A5.8's two-sided recursion), clamping
+ * by insertion at the domain ends. */
 #include "nurbs.h"
 
 #include <assert.h>
@@ -461,20 +462,42 @@ static int multiplicity(const double *knots, int nknots, double u)
     return m;
 }
 
+/* The k with U[k] <= u < U[k+1] that A5.1 needs, for any u in the closed
+ * domain. sc_find_span maps the domain's upper end to the span below it,
+ * right for evaluation but not for inserting there: an unclamped vector
+ * has knots above the domain, and u must go in before them. */
+static int insertion_span(const double *knots, int nknots, double u)
+{
+    int low = 0, high = nknots; /* first index with knots[i] > u lies in [low, high] */
+    while (low < high) {
+        int mid = (low + high) / 2;
+        if (knots[mid] <= u)
+            low = mid + 1;
+        else
+            high = mid;
+    }
+    return low - 1;
+}
+
 /* A5.1: inserts u `times` times (limited so that the multiplicity does not
- * exceed the degree). */
+ * exceed the degree). u may be a domain end: inserting the ends of an
+ * unclamped vector up to the degree is how it is clamped (sc_curve_clamp). */
 void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out)
 {
     int p = c->degree, n = c->ncp - 1, stride = c->dim + 1;
     double t0, t1;
     sc_curve_domain(c, &t0, &t1);
-    int s = multiplicity(c->knots, (int)knot_count(c), u);
-    int r = times < p - s ? times : p - s;
-    if (!(u > t0 && u < t1) || r <= 0) {
+    if (!(u >= t0 && u <= t1 && t0 < t1)) {
         sc_curve_copy(out, c);
         return;
     }
-    int k = sc_find_span(p, c->knots, c->ncp, u);
+    int k = insertion_span(c->knots, (int)knot_count(c), u);
+    int s = multiplicity(c->knots, (int)knot_count(c), u);
+    int r = times < p - s ? times : p - s;
+    if (r <= 0) {
+        sc_curve_copy(out, c);
+        return;
+    }
     sc_curve_alloc(out, c->dim, p, c->ncp + r);
     const double *U = c->knots;
     double *UQ = out->knots;
@@ -680,6 +703,39 @@ void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right
     sc_curve_free(&full);
 }
 
+void sc_curve_clamp(const sc_curve *c, sc_curve *out)
+{
+    int p = c->degree, stride = c->dim + 1;
+    double t0, t1;
+    sc_curve_domain(c, &t0, &t1);
+    if (!(t0 < t1)) {
+        sc_curve_copy(out, c);
+        return;
+    }
+    sc_curve front, both;
+    sc_curve_insert_knot(c, t0, p, &front);
+    sc_curve_insert_knot(&front, t1, p, &both);
+    sc_curve_free(&front);
+    /* Each end now has multiplicity >= p. N_i with i < last_t0 - p ends at
+     * or before t0, N_i with i >= first_t1 starts at or after t1: neither
+     * reaches into the domain, so their points go. The outermost knots
+     * kept, on which no function over the domain depends, become t0 and
+     * t1. */
+    int nk = both.ncp + p + 1, last_t0 = p, first_t1 = both.ncp;
+    while (last_t0 + 1 < nk && both.knots[last_t0 + 1] == t0)
+        last_t0++;
+    while (both.knots[first_t1 - 1] == t1)
+        first_t1--;
+    int first = last_t0 - p, count = first_t1 - first;
+    sc_curve_alloc(out, c->dim, p, count);
+    memcpy(out->knots, both.knots + first, sizeof(double) * (size_t)(count + p + 1));
+    out->knots[0] = t0;
+    out->knots[count + p] = t1;
+    memcpy(out->cp, both.cp + (size_t)first * (size_t)stride,
+           sizeof(double) * (size_t)count * (size_t)stride);
+    sc_curve_free(&both);
+}
+
 static double binomial(int n, int k)
 {
     double b = 1.0;
@@ -817,7 +873,13 @@ void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out)
 /* column (dir 1, along v) of homogeneous control points (A5.3, A5.5).   */
 /* ------------------------------------------------------------------ */
 
-typedef enum curve_job_kind { JOB_INSERT, JOB_REFINE, JOB_SPLIT, JOB_ELEVATE } curve_job_kind;
+typedef enum curve_job_kind {
+    JOB_INSERT,
+    JOB_REFINE,
+    JOB_SPLIT,
+    JOB_ELEVATE,
+    JOB_CLAMP
+} curve_job_kind;
 
 typedef struct curve_job {
     curve_job_kind kind;
@@ -836,6 +898,7 @@ static void run_job(const curve_job *job, const sc_curve *in, sc_curve out[2])
     case JOB_REFINE: sc_curve_refine(in, job->x, job->nx, &out[0]); break;
     case JOB_SPLIT: sc_curve_split(in, job->t, &out[0], &out[1]); break;
     case JOB_ELEVATE: sc_curve_elevate(in, job->times, &out[0]); break;
+    case JOB_CLAMP: sc_curve_clamp(in, &out[0]); break;
     }
 }
 
@@ -911,6 +974,15 @@ void sc_surface_elevate(const sc_surface *s, int dir, int times, sc_surface *out
 {
     curve_job job = {.kind = JOB_ELEVATE, .times = times};
     surface_run_job(s, dir, &job, out);
+}
+
+void sc_surface_clamp(const sc_surface *s, sc_surface *out)
+{
+    curve_job job = {.kind = JOB_CLAMP};
+    sc_surface clamped_u;
+    surface_run_job(s, 0, &job, &clamped_u);
+    surface_run_job(&clamped_u, 1, &job, out);
+    sc_surface_free(&clamped_u);
 }
 
 static void surface_refine_to_bezier(const sc_surface *s, int dir, sc_surface *out)

@@ -46,11 +46,18 @@ void sc_surface_domain(const sc_surface *s, double *u0, double *u1, double *v0,
 
 /* ---- curves: new curves written to *out (allocated; free with
  * sc_curve_free). `out` must not alias the input. ---- */
+/* Inserts u (in the closed domain, ends included) up to multiplicity
+ * degree; more, or u outside the domain, leaves the curve as it is. */
 void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out);
 void sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out);
 /* Splits at t strictly inside the domain into [t0, t] and [t, t1]. */
 void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right);
 void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out);
+/* The same curve on its domain [knots[degree], knots[ncp]] with clamped
+ * knots: for an unclamped (uniform, periodic, ...) vector, both domain ends
+ * inserted to multiplicity degree and the control points outside dropped;
+ * a clamped curve (or one with an empty domain) is copied as it is. */
+void sc_curve_clamp(const sc_curve *c, sc_curve *out);
 /* Bézier segments: *count segments written to a new array of curves, each
  * with degree+1 control points and knots [a..a b..b] keeping its original
  * parameter interval. */
@@ -65,6 +72,8 @@ void sc_surface_refine(const sc_surface *s, int dir, const double *x, int nx,
 void sc_surface_split(const sc_surface *s, int dir, double t, sc_surface *lo,
                       sc_surface *hi);
 void sc_surface_elevate(const sc_surface *s, int dir, int times, sc_surface *out);
+/* sc_curve_clamp in both directions. */
+void sc_surface_clamp(const sc_surface *s, sc_surface *out);
 
 /* One Bézier patch of a surface, with its parameter rectangle in the
  * surface's own domain. cp layout as sc_surface: 4 doubles per point,

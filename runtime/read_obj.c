@@ -9,9 +9,9 @@
  * break points ((K / deg) + 1 of them for K + 1 control points).
  *
  * Every surface and curve is brought to the scene model's clamped form on
- * read: knot insertion (NURBS core) to multiplicity deg at the ends of the
- * range the surface is evaluated over, then the control points outside it
- * are dropped. */
+ * read: its domain ends inserted to multiplicity deg and the control points
+ * outside dropped (sc_curve_clamp / sc_surface_clamp), then a surf range
+ * smaller than the domain cut out by splitting. */
 #include "io.h"
 
 #include <math.h>
@@ -351,159 +351,28 @@ static void load_mtllib(obj_reader *r)
     }
 }
 
-/* ---- knot vectors and clamping ---- */
+/* ---- clamping ---- */
 
-static int multiplicity(const double *knots, int n, double t)
+/* Replaces s by its clamped piece over [a, b] (within its domain) in
+ * direction dir. A surf range smaller than the knots' range is cut out by
+ * splitting, which leaves both sides clamped. */
+static void surface_restrict(sc_surface *s, int dir, double a, double b)
 {
-    int m = 0;
-    for (int i = 0; i < n; i++)
-        m += knots[i] == t;
-    return m;
-}
-
-/* For a knot vector in which a and b both have multiplicity >= p: the
- * range of control points to keep and the clamped knot vector of the piece
- * over [a, b] (written to out, which holds nknots entries). */
-static void clamp_plan(const double *knots, int nknots, int p, double a, double b, int *first,
-                       int *count, double *out)
-{
-    int last_a = 0, first_b = nknots - 1;
-    for (int i = 0; i < nknots; i++)
-        if (knots[i] == a)
-            last_a = i;
-    for (int i = nknots - 1; i >= 0; i--)
-        if (knots[i] == b)
-            first_b = i;
-    *first = last_a - p;
-    *count = first_b - last_a + p;
-    int k = 0;
-    for (int i = 0; i <= p; i++)
-        out[k++] = a;
-    for (int i = last_a + 1; i < first_b; i++)
-        out[k++] = knots[i];
-    for (int i = 0; i <= p; i++)
-        out[k++] = b;
-}
-
-static int is_clamped_to(const double *knots, int nknots, int p, double a, double b)
-{
-    return multiplicity(knots, p + 1, a) == p + 1 &&
-           multiplicity(knots + nknots - p - 1, p + 1, b) == p + 1;
-}
-
-/* The knot vector with p knots added below and above. The basis
- * functions of the original control points keep their knots, so with
- * phantom points at both ends the curve is unchanged on its old range,
- * which now lies strictly inside the new one: the NURBS core inserts knots
- * only strictly inside a curve's range, and clamping inserts at its ends. */
-static void pad_knots(const double *k, int nk, int p, double *out)
-{
-    double d = k[nk - 1] > k[0] ? k[nk - 1] - k[0] : 1;
-    for (int i = 0; i < p; i++) {
-        out[i] = k[0] - (p - i) * d;
-        out[p + nk + i] = k[nk - 1] + (i + 1) * d;
+    double lo[2], hi[2];
+    sc_surface_domain(s, &lo[0], &hi[0], &lo[1], &hi[1]);
+    sc_surface below, above;
+    if (a > lo[dir]) {
+        sc_surface_split(s, dir, a, &below, &above);
+        sc_surface_free(&below);
+        sc_surface_free(s);
+        *s = above;
     }
-    memcpy(out + p, k, sizeof(double) * (size_t)nk);
-}
-
-/* Replaces c by its piece over [a, b] in clamped form. */
-static void curve_clamp(sc_curve *c, double a, double b)
-{
-    int p = c->degree, stride = c->dim + 1;
-    if (is_clamped_to(c->knots, c->ncp + p + 1, p, a, b))
-        return;
-    sc_curve padded;
-    sc_curve_alloc(&padded, c->dim, p, c->ncp + 2 * p);
-    pad_knots(c->knots, c->ncp + p + 1, p, padded.knots);
-    for (int i = 0; i < padded.ncp; i++) {
-        int src = i < p ? 0 : i - p < c->ncp ? i - p : c->ncp - 1;
-        memcpy(padded.cp + (size_t)i * (size_t)stride, c->cp + (size_t)src * (size_t)stride,
-               sizeof(double) * (size_t)stride);
+    if (b < hi[dir]) {
+        sc_surface_split(s, dir, b, &below, &above);
+        sc_surface_free(&above);
+        sc_surface_free(s);
+        *s = below;
     }
-    sc_curve_free(c);
-    *c = padded;
-    double ends[2] = {a, b};
-    for (int e = 0; e < 2; e++) {
-        int s = multiplicity(c->knots, c->ncp + p + 1, ends[e]);
-        if (s < p) {
-            sc_curve tmp;
-            sc_curve_insert_knot(c, ends[e], p - s, &tmp);
-            sc_curve_free(c);
-            *c = tmp;
-        }
-    }
-    int nk = c->ncp + p + 1;
-    double *knots = sc_alloc((size_t)nk, sizeof(double));
-    int first, count;
-    clamp_plan(c->knots, nk, p, a, b, &first, &count, knots);
-    sc_curve out;
-    sc_curve_alloc(&out, c->dim, p, count);
-    memcpy(out.knots, knots, sizeof(double) * (size_t)(count + p + 1));
-    memcpy(out.cp, c->cp + (size_t)first * (size_t)stride,
-           sizeof(double) * (size_t)count * (size_t)stride);
-    free(knots);
-    sc_curve_free(c);
-    *c = out;
-}
-
-/* Replaces s by the `count` rows of control points starting at `first`
- * along direction dir (indices outside the net repeat its end rows: the
- * phantom points of the padding) with `knots` for that direction; name,
- * colour and transform are kept. */
-static void surface_take(sc_surface *s, int dir, int first, int count, const double *knots)
-{
-    int p = dir ? s->deg_v : s->deg_u;
-    int nu = dir ? s->nu : count, nv = dir ? count : s->nv;
-    sc_surface out = *s;
-    sc_surface_alloc(&out, s->deg_u, s->deg_v, nu, nv);
-    out.nloops = 0;
-    out.loops = NULL;
-    memcpy(dir ? out.knots_v : out.knots_u, knots, sizeof(double) * (size_t)(count + p + 1));
-    if (dir == 0)
-        memcpy(out.knots_v, s->knots_v, sizeof(double) * (size_t)(s->nv + s->deg_v + 1));
-    else
-        memcpy(out.knots_u, s->knots_u, sizeof(double) * (size_t)(s->nu + s->deg_u + 1));
-    for (int j = 0; j < nv; j++)
-        for (int i = 0; i < nu; i++) {
-            int along = dir ? j : i, n = dir ? s->nv : s->nu;
-            int src = first + along;
-            src = src < 0 ? 0 : src >= n ? n - 1 : src;  /* phantom points repeat the ends */
-            int si = dir ? i : src, sj = dir ? src : j;
-            memcpy(out.cp + 4 * ((size_t)j * (size_t)nu + (size_t)i),
-                   s->cp + 4 * ((size_t)sj * (size_t)s->nu + (size_t)si), 4 * sizeof(double));
-        }
-    sc_surface_free(s);
-    *s = out;
-}
-
-/* Replaces s by its piece over [a, b] in direction dir, clamped. */
-static void surface_clamp(sc_surface *s, int dir, double a, double b)
-{
-    int p = dir ? s->deg_v : s->deg_u;
-    int n = dir ? s->nv : s->nu;
-    if (is_clamped_to(dir ? s->knots_v : s->knots_u, n + p + 1, p, a, b))
-        return;
-    double *knots = sc_alloc((size_t)(n + 3 * p + 1), sizeof(double));
-    pad_knots(dir ? s->knots_v : s->knots_u, n + p + 1, p, knots);
-    surface_take(s, dir, -p, n + 2 * p, knots);
-    free(knots);
-    double ends[2] = {a, b};
-    for (int e = 0; e < 2; e++) {
-        int nk = (dir ? s->nv : s->nu) + p + 1;
-        int m = multiplicity(dir ? s->knots_v : s->knots_u, nk, ends[e]);
-        if (m < p) {
-            sc_surface tmp;
-            sc_surface_insert_knot(s, dir, ends[e], p - m, &tmp);
-            sc_surface_free(s);
-            *s = tmp;
-        }
-    }
-    int nk = (dir ? s->nv : s->nu) + p + 1;
-    knots = sc_alloc((size_t)nk, sizeof(double));
-    int first, count;
-    clamp_plan(dir ? s->knots_v : s->knots_u, nk, p, a, b, &first, &count, knots);
-    surface_take(s, dir, first, count, knots);
-    free(knots);
 }
 
 /* The knot vector of one direction of the element, checked, into a new
@@ -622,7 +491,10 @@ static int finish_curv2(obj_reader *r)
             return SC_FAIL;
         }
     }
-    curve_clamp(&c, c.knots[c.degree], c.knots[c.ncp]);
+    sc_curve clamped;
+    sc_curve_clamp(&c, &clamped);
+    sc_curve_free(&c);
+    c = clamped;
     sc_error check;
     if (sc_curve_check(&c, &check)) {
         sc_curve_free(&c);
@@ -739,8 +611,12 @@ static int finish_surf(obj_reader *r)
         }
     static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     memcpy(s.xform, identity, sizeof identity);
-    surface_clamp(&s, 0, lim[0], lim[1]);
-    surface_clamp(&s, 1, lim[2], lim[3]);
+    sc_surface clamped;
+    sc_surface_clamp(&s, &clamped);
+    sc_surface_free(&s);
+    s = clamped;
+    surface_restrict(&s, 0, lim[0], lim[1]);
+    surface_restrict(&s, 1, lim[2], lim[3]);
     sc_surface_update_rational(&s);
     sc_error check;
     if (sc_surface_check(&s, &check)) {

@@ -5,7 +5,8 @@
  * Bézier pieces, and the analytic normals of the teapot's and the sphere's
  * poles. Every shape-preserving operation (insertion, refinement,
  * extraction, splitting, elevation) is checked by evaluating before and
- * after at random parameters. */
+ * after at random parameters; clamping an unclamped B-spline, against the
+ * Cox–de Boor recursion as defined, summed over the original's points. */
 #include "test.h"
 
 #include <stdlib.h>
@@ -742,5 +743,200 @@ TEST(nurbs_normal_fallback_on_degenerate_corner)
     for (int i = 0; i < 16; i++)
         s.cp[i] = i % 4 == 3 ? 1 : 0.5;
     CHECK_INT(sc_surface_normal(&s, 0.5, 0.5, n), -1);
+    sc_surface_free(&s);
+}
+
+/* ---- unclamped knot vectors ---- */
+
+/* N_{i,p}(u) by the Cox–de Boor recursion as defined (half-open intervals,
+ * 0/0 taken as 0) over the whole knot vector: independent of sc_find_span
+ * and sc_basis, and of whether the vector is clamped. */
+static double cox_de_boor(const double *U, int i, int p, double u)
+{
+    if (p == 0)
+        return U[i] <= u && u < U[i + 1] ? 1.0 : 0.0;
+    double left = 0, right = 0;
+    if (U[i + p] > U[i])
+        left = (u - U[i]) / (U[i + p] - U[i]) * cox_de_boor(U, i, p - 1, u);
+    if (U[i + p + 1] > U[i + 1])
+        right = (U[i + p + 1] - u) / (U[i + p + 1] - U[i + 1]) * cox_de_boor(U, i + 1, p - 1, u);
+    return left + right;
+}
+
+/* The curve point as the plain sum Σ N_i(u)·P_i of homogeneous points. At
+ * the domain's upper end the half-open definition still gives the limit
+ * from the left: every N_{i,p} with p >= 1 vanishes at its first knot. */
+static void curve_by_definition(const sc_curve *c, double u, double *point)
+{
+    double A[4] = {0};
+    int stride = c->dim + 1;
+    for (int i = 0; i < c->ncp; i++) {
+        double N = cox_de_boor(c->knots, i, c->degree, u);
+        for (int k = 0; k < stride; k++)
+            A[k] += N * c->cp[i * stride + k];
+    }
+    for (int k = 0; k < c->dim; k++)
+        point[k] = A[k] / A[c->dim];
+}
+
+static void surface_by_definition(const sc_surface *s, double u, double v, double p[3])
+{
+    double A[4] = {0};
+    for (int j = 0; j < s->nv; j++) {
+        double Nv = cox_de_boor(s->knots_v, j, s->deg_v, v);
+        for (int i = 0; i < s->nu; i++) {
+            double N = cox_de_boor(s->knots_u, i, s->deg_u, u) * Nv;
+            for (int k = 0; k < 4; k++)
+                A[k] += N * s->cp[4 * (j * s->nu + i) + k];
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        p[k] = A[k] / A[3];
+}
+
+static int is_clamped(const double *knots, int degree, int ncp, double t0, double t1)
+{
+    for (int i = 0; i <= degree; i++)
+        if (knots[i] != t0 || knots[ncp + i] != t1)
+            return 0;
+    return 1;
+}
+
+/* A uniform cubic B-spline in the plane: knots 0, 1, …, ncp + 3, domain
+ * [3, ncp], with the given weights (NULL: polynomial). */
+static void uniform_cubic(unsigned long long *rng, int ncp, const double *w, sc_curve *c)
+{
+    double knots[32], cp[64];
+    for (int i = 0; i < ncp + 4; i++)
+        knots[i] = i;
+    for (int i = 0; i < 2 * ncp; i++)
+        cp[i] = 4 * test_rand(rng) - 2;
+    make_curve(c, 2, 3, ncp, knots, cp, w);
+}
+
+TEST(nurbs_clamp_uniform_cubic_curve)
+{
+    unsigned long long rng = 71;
+    const double weights[8] = {1, 0.6, 1.8, 0.9, 1.3, 0.5, 1.1, 2.0};
+    for (int rational = 0; rational < 2; rational++) {
+        sc_curve c, out;
+        uniform_cubic(&rng, 8, rational ? weights : NULL, &c);
+        sc_curve_clamp(&c, &out);
+        /* Five spans of a cubic: 5 + 3 control points, as before. */
+        CHECK_INT(out.degree, 3);
+        CHECK_INT(out.ncp, 8);
+        CHECK(is_clamped(out.knots, 3, out.ncp, 3.0, 8.0));
+        for (int k = 4; k <= 7; k++)
+            CHECK_NEAR(out.knots[k], k, 0);
+        for (int k = 0; k <= 100; k++) {
+            double u = 3 + 5 * k / 100.0, want[2], got[2], direct[2];
+            curve_by_definition(&c, u, want);
+            sc_curve_eval(&out, u, got, NULL);
+            /* The core's own evaluation works on the unclamped vector too. */
+            sc_curve_eval(&c, u, direct, NULL);
+            for (int d = 0; d < 2; d++) {
+                CHECK_NEAR(got[d], want[d], 1e-12);
+                CHECK_NEAR(direct[d], want[d], 1e-12);
+            }
+        }
+        if (!rational) {
+            /* A uniform cubic passes through (P0 + 4 P1 + P2) / 6 at its
+             * first knot of the domain, which the clamped curve
+             * interpolates with its first control point (and likewise at
+             * the end). */
+            const double *P = c.cp, *Q = out.cp;
+            for (int d = 0; d < 2; d++) {
+                CHECK_NEAR(Q[d], (P[d] + 4 * P[3 + d] + P[6 + d]) / 6, 1e-14);
+                CHECK_NEAR(Q[21 + d], (P[15 + d] + 4 * P[18 + d] + P[21 + d]) / 6, 1e-14);
+            }
+        }
+        sc_curve_free(&c);
+        sc_curve_free(&out);
+    }
+}
+
+TEST(nurbs_insert_knot_at_domain_ends)
+{
+    unsigned long long rng = 73;
+    sc_curve c, out;
+    uniform_cubic(&rng, 7, NULL, &c);
+    const double ends[2] = {3, 7};
+    for (int e = 0; e < 2; e++) {
+        /* Once, then more than the degree allows: multiplicity stops at 3. */
+        const int times[2] = {1, 10}, added[2] = {1, 2};
+        for (int t = 0; t < 2; t++) {
+            sc_curve_insert_knot(&c, ends[e], times[t], &out);
+            CHECK_INT(out.ncp, c.ncp + added[t]);
+            int mult = 0;
+            for (int i = 0; i < out.ncp + 4; i++)
+                mult += out.knots[i] == ends[e];
+            CHECK_INT(mult, 1 + added[t]);
+            double t0, t1;
+            sc_curve_domain(&out, &t0, &t1);
+            CHECK_NEAR(t0, 3, 0);
+            CHECK_NEAR(t1, 7, 0);
+            CHECK(curve_distance(&c, &out, 3, 7, &rng) < 1e-12);
+            sc_curve_free(&out);
+        }
+    }
+    /* Outside the domain, or at a clamped end: nothing to insert. */
+    sc_curve_insert_knot(&c, 2.5, 1, &out);
+    CHECK_INT(out.ncp, c.ncp);
+    sc_curve_free(&out);
+    sc_curve clamped;
+    sc_curve_clamp(&c, &clamped);
+    sc_curve_insert_knot(&clamped, 3, 1, &out);
+    CHECK_INT(out.ncp, clamped.ncp);
+    CHECK(memcmp(out.cp, clamped.cp, sizeof(double) * 3 * (size_t)out.ncp) == 0);
+    sc_curve_free(&out);
+    /* Clamping a clamped curve copies it. */
+    sc_curve_clamp(&clamped, &out);
+    CHECK_INT(out.ncp, clamped.ncp);
+    CHECK(memcmp(out.knots, clamped.knots, sizeof(double) * (size_t)(out.ncp + 4)) == 0);
+    CHECK(memcmp(out.cp, clamped.cp, sizeof(double) * 3 * (size_t)out.ncp) == 0);
+    sc_curve_free(&out);
+    sc_curve_free(&clamped);
+    sc_curve_free(&c);
+}
+
+TEST(nurbs_clamp_uniform_bicubic_surface)
+{
+    unsigned long long rng = 79;
+    sc_surface s, out;
+    memset(&s, 0, sizeof s);
+    s.xform[0] = s.xform[5] = s.xform[10] = 1;
+    snprintf(s.name, sizeof s.name, "uniform");
+    /* 7 × 6 points, uniform knots 0 … 10 in u and 0 … 9 in v: domain
+     * [3, 7] × [3, 6]; rational. */
+    sc_surface_alloc(&s, 3, 3, 7, 6);
+    for (int i = 0; i < 11; i++)
+        s.knots_u[i] = i;
+    for (int i = 0; i < 10; i++)
+        s.knots_v[i] = i;
+    for (int k = 0; k < 42; k++) {
+        double w = 0.5 + 1.5 * test_rand(&rng);
+        for (int d = 0; d < 3; d++)
+            s.cp[4 * k + d] = (2 * test_rand(&rng) - 1) * w;
+        s.cp[4 * k + 3] = w;
+    }
+    s.rational = 1;
+    sc_surface_clamp(&s, &out);
+    CHECK_STR(out.name, "uniform");
+    CHECK_INT(out.nu, 7);
+    CHECK_INT(out.nv, 6);
+    CHECK(is_clamped(out.knots_u, 3, out.nu, 3.0, 7.0));
+    CHECK(is_clamped(out.knots_v, 3, out.nv, 3.0, 6.0));
+    for (int a = 0; a <= 20; a++)
+        for (int b = 0; b <= 15; b++) {
+            double u = 3 + a / 5.0, v = 3 + b / 5.0, want[3], got[3], direct[3];
+            surface_by_definition(&s, u, v, want);
+            sc_surface_eval(&out, u, v, got, NULL, NULL);
+            sc_surface_eval(&s, u, v, direct, NULL, NULL);
+            for (int d = 0; d < 3; d++) {
+                CHECK_NEAR(got[d], want[d], 1e-12);
+                CHECK_NEAR(direct[d], want[d], 1e-12);
+            }
+        }
+    sc_surface_free(&out);
     sc_surface_free(&s);
 }
