@@ -663,31 +663,6 @@ static double snap_to_knot(double t, const double *knots, int nk, double scale)
     return t;
 }
 
-/* Extends a curve by `front` knots below the first and `back` above the
- * last, repeating the end control points. An unclamped end of the domain
- * then lies strictly inside, where the NURBS core can split; the shape over
- * the original domain does not change (the added basis functions vanish
- * there). */
-static void curve_pad(const sc_curve *c, int front, int back, sc_curve *out)
-{
-    int nk = c->ncp + c->degree + 1, stride = c->dim + 1;
-    double step = c->knots[nk - 1] - c->knots[0];
-    if (!(step > 0))
-        step = 1;
-    sc_curve_alloc(out, c->dim, c->degree, c->ncp + front + back);
-    for (int i = 0; i < front; i++)
-        out->knots[i] = c->knots[0] - (front - i) * step;
-    memcpy(out->knots + front, c->knots, sizeof(double) * (size_t)nk);
-    for (int i = 0; i < back; i++)
-        out->knots[front + nk + i] = c->knots[nk - 1] + (i + 1) * step;
-    for (int i = 0; i < front; i++)
-        memcpy(out->cp + (size_t)i * stride, c->cp, sizeof(double) * (size_t)stride);
-    memcpy(out->cp + (size_t)front * stride, c->cp, sizeof(double) * (size_t)c->ncp * stride);
-    for (int i = 0; i < back; i++)
-        memcpy(out->cp + (size_t)(front + c->ncp + i) * stride,
-               c->cp + (size_t)(c->ncp - 1) * stride, sizeof(double) * (size_t)stride);
-}
-
 /* Replaces the curve by its piece over [a, b] (within its domain), with
  * clamped knots at both ends. */
 static void curve_restrict(sc_curve *c, double a, double b)
@@ -700,11 +675,11 @@ static void curve_restrict(sc_curve *c, double a, double b)
         a = t0;
         b = t1;
     }
-    int pad_front = c->knots[0] < t0 ? p : 0, pad_back = c->knots[nk - 1] > t1 ? p : 0;
-    if (!pad_front && !pad_back && a == t0 && b == t1)
+    int clamped = c->knots[0] == t0 && c->knots[nk - 1] == t1;
+    if (clamped && a == t0 && b == t1)
         return;
     sc_curve work, lo, hi;
-    curve_pad(c, pad_front, pad_back, &work);
+    sc_curve_clamp(c, &work);
     sc_curve_domain(&work, &t0, &t1);
     if (a > t0) {
         sc_curve_split(&work, a, &lo, &hi);
@@ -723,39 +698,6 @@ static void curve_restrict(sc_curve *c, double a, double b)
     *c = work;
 }
 
-/* The surface counterpart of curve_pad along dir (0 = u, 1 = v). */
-static void surface_pad(const sc_surface *s, int dir, int front, int back, sc_surface *out)
-{
-    int deg = dir ? s->deg_v : s->deg_u, n = dir ? s->nv : s->nu, nk = n + deg + 1;
-    const double *k = dir ? s->knots_v : s->knots_u;
-    *out = *s;
-    out->loops = NULL;
-    out->nloops = 0;
-    sc_surface_alloc(out, s->deg_u, s->deg_v, s->nu + (dir ? 0 : front + back),
-                     s->nv + (dir ? front + back : 0));
-    double *ko = dir ? out->knots_v : out->knots_u;
-    memcpy(dir ? out->knots_u : out->knots_v, dir ? s->knots_u : s->knots_v,
-           sizeof(double) * (size_t)(dir ? s->nu + s->deg_u + 1 : s->nv + s->deg_v + 1));
-    double step = k[nk - 1] - k[0];
-    if (!(step > 0))
-        step = 1;
-    for (int i = 0; i < front; i++)
-        ko[i] = k[0] - (front - i) * step;
-    memcpy(ko + front, k, sizeof(double) * (size_t)nk);
-    for (int i = 0; i < back; i++)
-        ko[front + nk + i] = k[nk - 1] + (i + 1) * step;
-    for (int j = 0; j < out->nv; j++)
-        for (int i = 0; i < out->nu; i++) {
-            int si = i, sj = j;
-            if (dir == 0)
-                si = i < front ? 0 : i - front >= s->nu ? s->nu - 1 : i - front;
-            else
-                sj = j < front ? 0 : j - front >= s->nv ? s->nv - 1 : j - front;
-            memcpy(out->cp + 4 * ((size_t)j * out->nu + i), s->cp + 4 * ((size_t)sj * s->nu + si),
-                   4 * sizeof(double));
-        }
-}
-
 static void surface_restrict(sc_surface *s, int dir, double a, double b)
 {
     int p = dir ? s->deg_v : s->deg_u, n = dir ? s->nv : s->nu, nk = n + p + 1;
@@ -767,11 +709,11 @@ static void surface_restrict(sc_surface *s, int dir, double a, double b)
         a = t0;
         b = t1;
     }
-    int pad_front = k[0] < t0 ? p : 0, pad_back = k[nk - 1] > t1 ? p : 0;
-    if (!pad_front && !pad_back && a == t0 && b == t1)
+    int clamped = k[0] == t0 && k[nk - 1] == t1;
+    if (clamped && a == t0 && b == t1)
         return;
     sc_surface work, lo, hi;
-    surface_pad(s, dir, pad_front, pad_back, &work);
+    sc_surface_clamp(s, &work);
     const double *kw = dir ? work.knots_v : work.knots_u;
     if (a > kw[p]) {
         sc_surface_split(&work, dir, a, &lo, &hi);
