@@ -1,0 +1,64 @@
+/* cmd_diff.c — `splinecast diff REF TEST`: the accuracy of one AOV image
+ * against a reference, as one `accuracy` line (imgdiff.h). */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "imgdiff.h"
+
+static const char usage[] =
+    "usage: splinecast diff REF TEST\n"
+    "\n"
+    "Compares the AOV file TEST against the AOV file REF (an image name such as\n"
+    "out.png stands for the AOV beside it, out.aov) and prints one line:\n"
+    "  accuracy coverage_pct=P fail_pct=P pos_median_px=X pos_max_px=X\n"
+    "           normal_mean_deg=A normal_max_deg=A [iters_mean=N iters_max=N]\n"
+    "Percentages are of the pixels REF hits: coverage = holes + false hits, fail =\n"
+    "those plus pixels where both hit but the points are more than one pixel\n"
+    "footprint apart. Position errors are in pixel footprints at REF's distance and\n"
+    "normal errors in degrees, both over the pixels both hit; iterations (when TEST\n"
+    "has them) over TEST's hit pixels. Exits 1 when the two files differ in size or\n"
+    "camera.\n";
+
+static const char *aov_name(const char *path, char *buf, size_t size)
+{
+    size_t n = strlen(path);
+    if (n >= 4 && !strcmp(path + n - 4, ".png")) {
+        sc_aov_path_for(path, buf, size);
+        return buf;
+    }
+    return path;
+}
+
+int cmd_diff(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (argc != 3 || argv[1][0] == '-' || argv[2][0] == '-')
+        return cli_usage_error("diff", "expected two arguments: REF TEST");
+    char ref_buf[1024], test_buf[1024];
+    const char *ref_path = aov_name(argv[1], ref_buf, sizeof ref_buf);
+    const char *test_path = aov_name(argv[2], test_buf, sizeof test_buf);
+    sc_error err = {0};
+    sc_aov ref, test;
+    if (sc_aov_read(ref_path, &ref, &err) != SC_OK)
+        return cli_report(&err);
+    if (sc_aov_read(test_path, &test, &err) != SC_OK) {
+        sc_aov_free(&ref);
+        return cli_report(&err);
+    }
+    sc_accuracy acc;
+    int status = sc_accuracy_compare(&ref, &test, &acc, &err);
+    sc_aov_free(&ref);
+    sc_aov_free(&test);
+    if (status != SC_OK) {
+        fprintf(stderr, "splinecast diff: %s and %s: %s\n", ref_path, test_path, err.message);
+        return 1;
+    }
+    char line[512];
+    sc_accuracy_format(&acc, line, sizeof line);
+    puts(line);
+    return 0;
+}

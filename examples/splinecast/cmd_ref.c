@@ -1,0 +1,161 @@
+/* cmd_ref.c — `splinecast ref SCENE -o out.png`: the CPU reference image
+ * of a scene (refcast.h), written as a shaded PNG and as the AOV file
+ * beside it that `diff` compares against. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+#include "imgdiff.h"
+#include "io.h"
+#include "refcast.h"
+#include "shade.h"
+
+static const char usage[] =
+    "usage: splinecast ref SCENE -o OUT.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ,FOVY]\n"
+    "                      [--threads N] [--stats]\n"
+    "\n"
+    "Ray casts SCENE (.bpt, .obj, .igs/.iges, or `teapot`) on the CPU in double\n"
+    "precision (object-space subdivision to floating-point precision, exact trimming)\n"
+    "and writes a shaded PNG to OUT.png and the AOV file (surface id, u v, distance,\n"
+    "point, normal facing the viewer) beside it: the extension of OUT is replaced by\n"
+    ".aov (out.png -> out.aov). Format: docs/aov-format.md.\n"
+    "\n"
+    "  --size WxH      image size (default 512x512)\n"
+    "  --camera ...    eye, target, vertical field of view in degrees; +z up unless the\n"
+    "                  view is along z, then +y (default: a 3/4 view framing the scene)\n"
+    "  --threads N     worker threads (default: one per online core)\n"
+    "  --stats         also print rays per second\n"
+    "\n"
+    "stdout:\n"
+    "  ref image=OUT.png aov=OUT.aov size=WxH camera=EX,...,FOVY hit_pixels=N\n"
+    "  stats rays=N hits=N seconds=S rays_per_s=R subdivisions_per_ray=D over_budget=N threads=T\n"
+    "        (--stats; over_budget counts rays whose search was cut short, normally 0)\n"
+    "Progress goes to stderr for images above 256x256.\n";
+
+static int parse_size(const char *text, int *width, int *height)
+{
+    char *end;
+    long w = strtol(text, &end, 10);
+    if (end == text || (*end != 'x' && *end != 'X'))
+        return 0;
+    const char *h_text = end + 1;
+    long h = strtol(h_text, &end, 10);
+    if (end == h_text || *end || w < 1 || h < 1 || w > 16384 || h > 16384)
+        return 0;
+    *width = (int)w;
+    *height = (int)h;
+    return 1;
+}
+
+static void print_progress(double fraction, void *user)
+{
+    double t0 = *(const double *)user;
+    fprintf(stderr, "ref: %3.0f%% (%.1f s)\n", 100.0 * fraction, sc_now() - t0);
+}
+
+int cmd_ref(int argc, char **argv)
+{
+    if (cli_wants_help(argc, argv)) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    const char *scene_path = NULL, *out_path = NULL, *camera_text = NULL;
+    int width = 512, height = 512, threads = 0, want_stats = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int has_value = i + 1 < argc;
+        if (!strcmp(a, "-o") && has_value)
+            out_path = argv[++i];
+        else if (!strcmp(a, "--size") && has_value) {
+            if (!parse_size(argv[++i], &width, &height))
+                return cli_usage_error("ref", "bad --size '%s' (expected WxH, e.g. 512x512)",
+                                       argv[i]);
+        } else if (!strcmp(a, "--camera") && has_value)
+            camera_text = argv[++i];
+        else if (!strcmp(a, "--threads") && has_value) {
+            char *end;
+            long n = strtol(argv[++i], &end, 10);
+            if (*end || n < 1 || n > 256)
+                return cli_usage_error("ref", "bad --threads '%s' (expected 1..256)", argv[i]);
+            threads = (int)n;
+        } else if (!strcmp(a, "--stats"))
+            want_stats = 1;
+        else if (a[0] == '-' && a[1])
+            return cli_usage_error("ref", "unknown option or missing value: %s", a);
+        else if (!scene_path)
+            scene_path = a;
+        else
+            return cli_usage_error("ref", "more than one SCENE: %s", a);
+    }
+    if (!scene_path)
+        return cli_usage_error("ref", "expected a SCENE argument");
+    if (!out_path)
+        return cli_usage_error("ref", "expected -o OUT.png");
+    char aov_path[1024];
+    sc_aov_path_for(out_path, aov_path, sizeof aov_path);
+    if (!strcmp(aov_path, out_path))
+        return cli_usage_error("ref", "OUT '%s' would be overwritten by its own AOV file; "
+                               "use a .png name", out_path);
+
+    sc_error err = {0};
+    sc_camera cam = {.width = width, .height = height};
+    if (camera_text && sc_camera_parse(camera_text, &cam, &err) != SC_OK)
+        return cli_usage_error("ref", "%s", err.message);
+    sc_scene scene;
+    if (sc_read_scene(scene_path, &scene, &err) != SC_OK)
+        return cli_report(&err);
+    if (!camera_text)
+        sc_camera_default(&scene, &cam);
+
+    sc_refcast *rc;
+    if (sc_refcast_prepare(&scene, &rc, &err) != SC_OK) {
+        sc_scene_free(&scene);
+        return cli_report(&err);
+    }
+    double t0 = sc_now();
+    sc_refcast_options opt = {.threads = threads};
+    if ((long)width * height > 256L * 256L) {
+        opt.progress = print_progress;
+        opt.progress_user = &t0;
+    }
+    sc_aov aov;
+    sc_refcast_stats stats;
+    int status = sc_refcast_render(rc, &cam, &opt, &aov, &stats, &err);
+    sc_refcast_free(rc);
+    if (status == SC_OK)
+        status = sc_aov_write(aov_path, &aov, &err);
+    if (status == SC_OK) {
+        sc_image img;
+        sc_shade_aov(&aov, &scene, &img);
+        status = sc_png_write(out_path, &img, &err);
+        sc_image_free(&img);
+        if (status != SC_OK)
+            remove(aov_path); /* the pair is written whole or not at all */
+    }
+    if (status != SC_OK) {
+        if (aov.surface)
+            sc_aov_free(&aov);
+        sc_scene_free(&scene);
+        return cli_report(&err);
+    }
+    char cam_text[512];
+    sc_camera_format(&cam, cam_text, sizeof cam_text);
+    printf("ref image=%s aov=%s size=%dx%d camera=%s hit_pixels=%ld\n", out_path, aov_path, width,
+           height, cam_text, stats.hits);
+    if (want_stats)
+        printf("stats rays=%ld hits=%ld seconds=%.3f rays_per_s=%.0f subdivisions_per_ray=%.1f "
+               "over_budget=%ld threads=%d\n",
+               stats.rays, stats.hits, stats.seconds,
+               stats.seconds > 0 ? stats.rays / stats.seconds : 0.0,
+               stats.rays ? (double)stats.subdivisions / stats.rays : 0.0, stats.over_budget,
+               stats.threads);
+    if (stats.over_budget)
+        fprintf(stderr,
+                "splinecast ref: warning: %ld rays spent their split budget; they keep the "
+                "nearest hit found\n",
+                stats.over_budget);
+    sc_aov_free(&aov);
+    sc_scene_free(&scene);
+    return 0;
+}
