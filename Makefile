@@ -75,6 +75,15 @@ $(BUILD)/embedded.c: $(EMBED_FILES) Makefile
 $(BUILD)/embedded.o: $(BUILD)/embedded.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
+# The GL function table of runtime/gl_loader.h, generated from the Khronos
+# registry's core-profile header (Debian: libgl-dev / khronos-api).
+GL_REGISTRY_HEADER = /usr/include/GL/glcorearb.h
+$(BUILD)/gl_functions.h: runtime/gl_functions.awk $(GL_REGISTRY_HEADER)
+	@mkdir -p $(BUILD)
+	awk -v MAX=4.5 -f runtime/gl_functions.awk $(GL_REGISTRY_HEADER) > $@.tmp && mv $@.tmp $@
+
+$(LIB_OBJ) $(CLI_OBJ) $(TEST_OBJ): | $(BUILD)/gl_functions.h
+
 $(LIB): $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
@@ -111,3 +120,24 @@ clean:
 	rm -rf build build-asan
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+
+# Compiler figures (docs/compiler.md): IR sizes and build/optimise/interpret
+# times per key.
+.PHONY: bench-compiler
+bench-compiler: $(BUILD)/bench_compiler
+$(BUILD)/bench_compiler: $(BUILD)/examples/bench_compiler.o $(LIB)
+	$(CC) $(LDFLAGS) -o $@ $< $(LIB) $(LIBS)
+
+# GLSL for the variant keys of every example scene, generated and validated
+# by glslang at build time (a rejected program fails the build).
+.PHONY: shaders bless
+SHADER_SCENES = $(wildcard examples/scenes/*.bpt examples/scenes/*.obj examples/scenes/*.igs)
+shaders: $(CLI)
+	@failed=0; for s in $(SHADER_SCENES); do \
+	  $(CLI) gen --scene $$s -o $(BUILD)/shaders/$$(basename $$s | sed 's/\.[^.]*$$//') \
+	    || failed=$$((failed+1)); \
+	done; test $$failed = 0 || { echo "shaders: $$failed scene(s) failed" >&2; exit 1; }
+
+# Regenerates the golden GLSL files of tests/golden/ after an intended change.
+bless: $(CLI)
+	@sh tests/bless.sh $(CLI)

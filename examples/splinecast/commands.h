@@ -16,6 +16,12 @@ typedef struct command {
 int cmd_info(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_convert(int argc, char **argv);
+int cmd_ref(int argc, char **argv);
+int cmd_diff(int argc, char **argv);
+int cmd_gen(int argc, char **argv);
+int cmd_audit(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
 
 /* Shared helpers (cli.c). */
 /* True when argv has -h or --help. */
@@ -26,5 +32,18 @@ int cli_usage_error(const char *name, const char *fmt, ...)
 /* Prints a library error as "file:line: message" to stderr; returns 1. */
 struct sc_error;
 int cli_report(const struct sc_error *err);
+
+/* Key selection shared by gen and audit (cmd_gen.c). */
+/* Help text of the KEYS options. */
+extern const char gen_keys_usage[];
+struct scg_key;
+typedef struct gen_keys {
+    struct scg_key *keys;   /* distinct, in order of first appearance */
+    int count;
+} gen_keys;
+/* Takes the KEYS options out of argv, compacting the others (from argv[1])
+ * so that argv[1 .. *first_other - 1] are the command's own. Returns 0, or
+ * the exit status after printing the problem (2 usage, 1 unreadable scene). */
+int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *first_other);
 
 #endif

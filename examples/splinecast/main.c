@@ -9,6 +9,12 @@ static const command commands[] = {
     {"info", cmd_info, "what a scene holds and which variant keys it needs"},
     {"eval", cmd_eval, "evaluate a surface point, partials and normal"},
     {"convert", cmd_convert, "read a scene and write it as Wavefront OBJ"},
+    {"ref", cmd_ref, "CPU reference image (PNG + AOV) in double precision"},
+    {"diff", cmd_diff, "accuracy of one AOV image against a reference"},
+    {"gen", cmd_gen, "generate and validate the GLSL of variant keys or a scene"},
+    {"audit", cmd_audit, "size, SPIR-V, register and fetch counts per shader; compare"},
+    {"render", cmd_render, "ray cast a scene on the GPU: PNG + AOV, stats, accuracy"},
+    {"bench", cmd_bench, "speed of the GPU path: frame time, fill rate, iterations"},
 };
 
 static void usage(FILE *f)

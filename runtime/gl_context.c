@@ -1,0 +1,365 @@
+/* gl_context.c — offscreen OpenGL 4.5 core contexts from EGL or OSMesa
+ * (gl_context.h). EGL is linked (libEGL is the vendor-neutral dispatcher, not
+ * libGL); OSMesa is opened with dlopen only when it is used. Both render into
+ * framebuffer objects of their own, so neither needs a window surface. */
+#include "gl_context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <dlfcn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { GL_MAJOR_REQUIRED = 4, GL_MINOR_REQUIRED = 5 };
+
+/* The few OSMesa names used here (from GL/osmesa.h, whose inclusion would
+ * pull the legacy GL/gl.h next to glcorearb.h). */
+enum {
+    OSMESA_FORMAT_ = 0x22,
+    OSMESA_DEPTH_BITS_ = 0x30,
+    OSMESA_STENCIL_BITS_ = 0x31,
+    OSMESA_ACCUM_BITS_ = 0x32,
+    OSMESA_PROFILE_ = 0x33,
+    OSMESA_CORE_PROFILE_ = 0x34,
+    OSMESA_CONTEXT_MAJOR_VERSION_ = 0x36,
+    OSMESA_CONTEXT_MINOR_VERSION_ = 0x37,
+};
+typedef struct osmesa_context *osmesa_context_t;
+typedef osmesa_context_t (*osmesa_create_fn)(const int *attribs, osmesa_context_t share);
+typedef void (*osmesa_destroy_fn)(osmesa_context_t ctx);
+typedef unsigned char (*osmesa_make_current_fn)(osmesa_context_t ctx, void *buffer,
+                                                GLenum type, GLsizei width,
+                                                GLsizei height);
+typedef sc_gl_proc (*osmesa_get_proc_fn)(const char *name);
+
+struct sc_gl_context {
+    sc_gl gl;
+    sc_gl_backend backend;
+    char description[256];
+    /* EGL */
+    EGLDisplay egl_display;
+    EGLContext egl_context;
+    /* OSMesa */
+    void *osmesa_lib;
+    osmesa_context_t osmesa_context;
+    osmesa_destroy_fn osmesa_destroy;
+    osmesa_make_current_fn osmesa_make_current;
+    osmesa_get_proc_fn osmesa_get_proc;
+    unsigned char osmesa_dummy[4]; /* OSMesa binds a buffer; we draw to FBOs */
+};
+
+
+static int has_extension(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = list; p && (p = strstr(p, name)); p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0))
+            return 1;
+    return 0;
+}
+
+static const char *egl_error_name(EGLint code)
+{
+    switch (code) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    default: return "EGL error";
+    }
+}
+
+static void APIENTRY debug_message(GLenum source, GLenum type, GLuint id,
+                                     GLenum severity, GLsizei length,
+                                     const GLchar *message, const void *user)
+{
+    (void)source;
+    (void)length;
+    (void)user;
+    sc_log_level level = SC_LOG_DEBUG;
+    if (type == GL_DEBUG_TYPE_ERROR)
+        level = SC_LOG_ERROR;
+    else if (severity == GL_DEBUG_SEVERITY_HIGH || severity == GL_DEBUG_SEVERITY_MEDIUM)
+        level = SC_LOG_WARN;
+    else if (severity == GL_DEBUG_SEVERITY_LOW)
+        level = SC_LOG_INFO;
+    sc_log(level, "GL: %s (id %u)", message, id);
+}
+
+/* ---- EGL ---- */
+
+static sc_gl_proc egl_get_proc(const char *name, void *user)
+{
+    (void)user;
+    return (sc_gl_proc)eglGetProcAddress(name);
+}
+
+/* A display on a hardware device when the device platform offers one (a
+ * DRM device that is not Mesa's software device), else the surfaceless
+ * platform. */
+static EGLDisplay egl_open_display(const char **platform)
+{
+    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    if (!get_display)
+        return EGL_NO_DISPLAY;
+    if (has_extension(client, "EGL_EXT_platform_device")) {
+        PFNEGLQUERYDEVICESEXTPROC query_devices =
+            (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+        PFNEGLQUERYDEVICESTRINGEXTPROC query_string =
+            (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+        EGLDeviceEXT devices[16];
+        EGLint count = 0;
+        if (query_devices && query_string && query_devices(16, devices, &count)) {
+            for (EGLint i = 0; i < count; i++) {
+                const char *ext = query_string(devices[i], EGL_EXTENSIONS);
+                if (!has_extension(ext, "EGL_EXT_device_drm") ||
+                    has_extension(ext, "EGL_MESA_device_software"))
+                    continue;
+                EGLDisplay d = get_display(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
+                if (d != EGL_NO_DISPLAY && eglInitialize(d, NULL, NULL)) {
+                    *platform = "egl-device";
+                    return d;
+                }
+            }
+        }
+    }
+    if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
+        return EGL_NO_DISPLAY;
+    EGLDisplay d = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    if (d == EGL_NO_DISPLAY || !eglInitialize(d, NULL, NULL))
+        return EGL_NO_DISPLAY;
+    *platform = "egl-surfaceless";
+    return d;
+}
+
+static int egl_create(sc_gl_context *ctx, int debug, sc_error *err)
+{
+    const char *platform = "egl";
+    EGLDisplay display = egl_open_display(&platform);
+    if (display == EGL_NO_DISPLAY)
+        return sc_fail(err, NULL, 0, "EGL: no device or surfaceless display (%s)",
+                       egl_error_name(eglGetError()));
+    ctx->egl_display = display;
+    if (!eglBindAPI(EGL_OPENGL_API))
+        return sc_fail(err, NULL, 0, "EGL: the display has no desktop OpenGL");
+    const char *ext = eglQueryString(display, EGL_EXTENSIONS);
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    if (!has_extension(ext, "EGL_KHR_no_config_context")) {
+        const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                               EGL_DONT_CARE, EGL_NONE};
+        EGLint n = 0;
+        if (!eglChooseConfig(display, want, &config, 1, &n) || n < 1)
+            return sc_fail(err, NULL, 0, "EGL: no OpenGL config");
+    }
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, GL_MAJOR_REQUIRED,
+                              EGL_CONTEXT_MINOR_VERSION, GL_MINOR_REQUIRED,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                              EGL_NONE};
+    ctx->egl_context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
+    if (ctx->egl_context == EGL_NO_CONTEXT)
+        return sc_fail(err, NULL, 0,
+                       "EGL: no OpenGL %d.%d core context (%s): the driver is too old",
+                       GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED, egl_error_name(eglGetError()));
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl_context))
+        return sc_fail(err, NULL, 0, "EGL: eglMakeCurrent failed (%s)",
+                       egl_error_name(eglGetError()));
+    ctx->backend = SC_GL_BACKEND_EGL;
+    snprintf(ctx->description, sizeof ctx->description, "%s", platform);
+    return sc_gl_load(&ctx->gl, egl_get_proc, NULL, GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED,
+                      err);
+}
+
+static void egl_destroy(sc_gl_context *ctx)
+{
+    if (!ctx->egl_display)
+        return;
+    if (ctx->egl_context != EGL_NO_CONTEXT) {
+        if (eglGetCurrentContext() == ctx->egl_context)
+            eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE,
+                           EGL_NO_CONTEXT);
+        eglDestroyContext(ctx->egl_display, ctx->egl_context);
+    }
+    /* No eglTerminate: displays are shared per platform, so it would end
+     * the other contexts on it, and Mesa unloads its driver there, which
+     * leaves its leak reports without names to suppress them by. The display
+     * stays initialised until the process ends. */
+    ctx->egl_display = EGL_NO_DISPLAY;
+}
+
+/* ---- OSMesa ---- */
+
+static sc_gl_proc osmesa_get_proc(const char *name, void *user)
+{
+    return ((sc_gl_context *)user)->osmesa_get_proc(name);
+}
+
+static int osmesa_create(sc_gl_context *ctx, sc_error *err)
+{
+    static const char *const names[] = {"libOSMesa.so.8", "libOSMesa.so"};
+    for (size_t i = 0; i < 2 && !ctx->osmesa_lib; i++)
+        ctx->osmesa_lib = dlopen(names[i], RTLD_NOW | RTLD_LOCAL);
+    if (!ctx->osmesa_lib)
+        return sc_fail(err, NULL, 0, "OSMesa: cannot load libOSMesa.so.8 (%s)", dlerror());
+    /* Through a union: ISO C has no cast between object and function
+     * pointers, dlsym returns the former. */
+    union { void *object; osmesa_create_fn fn; } create;
+    union { void *object; osmesa_destroy_fn fn; } destroy;
+    union { void *object; osmesa_make_current_fn fn; } make_current;
+    union { void *object; osmesa_get_proc_fn fn; } get_proc;
+    create.object = dlsym(ctx->osmesa_lib, "OSMesaCreateContextAttribs");
+    destroy.object = dlsym(ctx->osmesa_lib, "OSMesaDestroyContext");
+    make_current.object = dlsym(ctx->osmesa_lib, "OSMesaMakeCurrent");
+    get_proc.object = dlsym(ctx->osmesa_lib, "OSMesaGetProcAddress");
+    if (!create.object || !destroy.object || !make_current.object || !get_proc.object)
+        return sc_fail(err, NULL, 0,
+                       "OSMesa: libOSMesa lacks OSMesaCreateContextAttribs (too old)");
+    ctx->osmesa_destroy = destroy.fn;
+    ctx->osmesa_make_current = make_current.fn;
+    ctx->osmesa_get_proc = get_proc.fn;
+    const int attribs[] = {OSMESA_FORMAT_, GL_RGBA,
+                           OSMESA_DEPTH_BITS_, 0,
+                           OSMESA_STENCIL_BITS_, 0,
+                           OSMESA_ACCUM_BITS_, 0,
+                           OSMESA_PROFILE_, OSMESA_CORE_PROFILE_,
+                           OSMESA_CONTEXT_MAJOR_VERSION_, GL_MAJOR_REQUIRED,
+                           OSMESA_CONTEXT_MINOR_VERSION_, GL_MINOR_REQUIRED,
+                           0};
+    ctx->osmesa_context = create.fn(attribs, NULL);
+    if (!ctx->osmesa_context)
+        return sc_fail(err, NULL, 0, "OSMesa: no OpenGL %d.%d core context",
+                       GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED);
+    if (!ctx->osmesa_make_current(ctx->osmesa_context, ctx->osmesa_dummy,
+                                  GL_UNSIGNED_BYTE, 1, 1))
+        return sc_fail(err, NULL, 0, "OSMesa: OSMesaMakeCurrent failed");
+    ctx->backend = SC_GL_BACKEND_OSMESA;
+    snprintf(ctx->description, sizeof ctx->description, "osmesa");
+    return sc_gl_load(&ctx->gl, osmesa_get_proc, ctx, GL_MAJOR_REQUIRED,
+                      GL_MINOR_REQUIRED, err);
+}
+
+static void osmesa_destroy(sc_gl_context *ctx)
+{
+    if (ctx->osmesa_context)
+        ctx->osmesa_destroy(ctx->osmesa_context);
+    ctx->osmesa_context = NULL;
+    if (ctx->osmesa_lib)
+        dlclose(ctx->osmesa_lib);
+    ctx->osmesa_lib = NULL;
+}
+
+/* ---- common ---- */
+
+static void release(sc_gl_context *ctx)
+{
+    egl_destroy(ctx);
+    osmesa_destroy(ctx);
+    memset(ctx, 0, sizeof *ctx);
+}
+
+int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
+                         sc_error *err)
+{
+    static const sc_gl_context_desc defaults = {0};
+    if (!desc)
+        desc = &defaults;
+    *out = NULL;
+    sc_gl_context *ctx = sc_alloc(1, sizeof *ctx);
+    int status = SC_FAIL;
+    if (desc->backend != SC_GL_BACKEND_OSMESA) {
+        sc_error egl_err = {0};
+        status = egl_create(ctx, desc->debug, &egl_err);
+        if (status != SC_OK) {
+            release(ctx);
+            sc_log(desc->backend == SC_GL_BACKEND_EGL ? SC_LOG_WARN : SC_LOG_INFO,
+                   "%s; falling back to OSMesa", egl_err.message);
+        }
+    }
+    if (status != SC_OK) {
+        status = osmesa_create(ctx, err);
+        if (status != SC_OK) {
+            release(ctx);
+            free(ctx);
+            return SC_FAIL;
+        }
+    }
+    size_t used = strlen(ctx->description);
+    snprintf(ctx->description + used, sizeof ctx->description - used, " %s",
+             (const char *)ctx->gl.GetString(GL_RENDERER));
+    /* Debug output on every context (Mesa reports API errors and shader
+     * compiler messages through it even without a debug context), synchronous
+     * so that a message is logged next to the call that caused it. */
+    ctx->gl.Enable(GL_DEBUG_OUTPUT);
+    ctx->gl.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    ctx->gl.DebugMessageCallback(debug_message, ctx);
+    *out = ctx;
+    return SC_OK;
+}
+
+void sc_gl_context_destroy(sc_gl_context *ctx)
+{
+    if (!ctx)
+        return;
+    release(ctx);
+    free(ctx);
+}
+
+int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err)
+{
+    if (ctx->backend == SC_GL_BACKEND_EGL) {
+        /* EGL and OSMesa share Mesa's dispatch library, and EGL skips a
+         * make-current of the context it believes current: release first, so
+         * that an OSMesa context made current meanwhile cannot stay active. */
+        eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (!eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE,
+                            ctx->egl_context))
+            return sc_fail(err, NULL, 0, "EGL: eglMakeCurrent failed (%s)",
+                           egl_error_name(eglGetError()));
+        return SC_OK;
+    }
+    if (!ctx->osmesa_make_current(ctx->osmesa_context, ctx->osmesa_dummy,
+                                  GL_UNSIGNED_BYTE, 1, 1))
+        return sc_fail(err, NULL, 0, "OSMesa: OSMesaMakeCurrent failed");
+    return SC_OK;
+}
+
+const sc_gl *sc_gl_context_gl(const sc_gl_context *ctx) { return &ctx->gl; }
+
+sc_gl_backend sc_gl_context_backend(const sc_gl_context *ctx) { return ctx->backend; }
+
+const char *sc_gl_context_description(const sc_gl_context *ctx)
+{
+    return ctx->description;
+}
+
+int sc_gl_backend_parse(const char *text, sc_gl_backend *out, sc_error *err)
+{
+    if (!strcmp(text, "egl"))
+        *out = SC_GL_BACKEND_EGL;
+    else if (!strcmp(text, "osmesa"))
+        *out = SC_GL_BACKEND_OSMESA;
+    else if (!strcmp(text, "default"))
+        *out = SC_GL_BACKEND_DEFAULT;
+    else
+        return sc_fail(err, NULL, 0, "unknown backend '%s' (egl, osmesa or default)", text);
+    return SC_OK;
+}
+
+const char *sc_gl_backend_name(sc_gl_backend backend)
+{
+    switch (backend) {
+    case SC_GL_BACKEND_EGL: return "egl";
+    case SC_GL_BACKEND_OSMESA: return "osmesa";
+    default: return "default";
+    }
+}

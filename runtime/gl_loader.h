@@ -1,0 +1,41 @@
+/* gl_loader.h — the OpenGL function table of one context. The entries are
+ * generated from the Khronos registry's core-profile header (see
+ * runtime/gl_functions.awk) and resolved through the GetProcAddress of the
+ * backend that made the context current (EGL or OSMesa), so the library
+ * never links libGL and works the same under both backends. Calls go
+ * through the table: gl->DrawArrays(...). */
+#ifndef SC_GL_LOADER_H
+#define SC_GL_LOADER_H
+
+#include <GL/glcorearb.h>
+
+#include "gl_functions.h"
+#include "sc_base.h"
+
+typedef struct sc_gl {
+#define SC_GL_MEMBER_(type, name, major, minor) type name;
+    SC_GL_FUNCTIONS(SC_GL_MEMBER_)
+#undef SC_GL_MEMBER_
+    int major, minor;     /* version of the context the table was loaded for */
+    int missing;          /* entry points up to that version left NULL */
+} sc_gl;
+
+/* Looks up one entry point by its full name ("glDrawArrays"). */
+typedef void (*sc_gl_proc)(void);
+typedef sc_gl_proc (*sc_gl_get_proc_fn)(const char *name, void *user);
+
+/* Resolves every entry point through get_proc and reads the context's
+ * version. Fails when the version is below major.minor. Entry points the
+ * driver does not give stay NULL, counted in gl->missing and logged. */
+int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
+               int minor, sc_error *err);
+
+/* In builds without NDEBUG: reads glGetError and, when it is set, logs it
+ * with `what` and returns SC_FAIL (filling err). Release builds return SC_OK
+ * without asking the driver, which would stall it. */
+int sc_gl_check(const sc_gl *gl, const char *what, sc_error *err);
+
+/* Name of a GL error code ("GL_INVALID_OPERATION"). */
+const char *sc_gl_error_name(GLenum code);
+
+#endif

@@ -1,0 +1,493 @@
+/* hulls.c — sub-patches and their convex hulls (hulls.h). Surfaces become
+ * Bézier patches by knot insertion (nurbs.h); a Bézier patch is split
+ * further by de Casteljau at the middle of its rectangle, which is knot
+ * insertion to full multiplicity. Hulls come from libqhull's reentrant API
+ * with triangulated output ("Qt"). */
+#include "hulls.h"
+
+#include <libqhull_r/qhull_ra.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "nurbs.h"
+
+enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8, MAX_DIVISIONS = 64 };
+
+/* A piece of a Bézier patch being refined: homogeneous points as in
+ * sc_bezier_patch, and its rectangle in the patch's [0, 1]². */
+typedef struct piece {
+    int deg_u, deg_v;
+    double *cp;
+    double local[4];
+} piece;
+
+/* Growing output plus what the hull builder needs while it runs. */
+typedef struct builder {
+    sc_hulls *out;
+    int cap_sub, cap_vert, cap_idx;
+    FILE *qhull_log;             /* qhull's messages, kept out of stderr */
+    const sc_surface *surface;
+    int surface_index, patch_index;
+    const sc_bezier_patch *patch;
+    double tolerance;            /* absolute, world units */
+    int max_depth;
+} builder;
+
+/* ---- options ---- */
+
+int sc_hull_desc_parse(const char *text, sc_hull_desc *desc, sc_error *err)
+{
+    memset(desc, 0, sizeof *desc);
+    char *end;
+    if (!strncmp(text, "uniform:", 8)) {
+        long n = strtol(text + 8, &end, 10);
+        if (end == text + 8 || *end || n < 1 || n > MAX_DIVISIONS)
+            return sc_fail(err, NULL, 0,
+                           "hull '%s': uniform:N needs a whole N from 1 to %d", text,
+                           MAX_DIVISIONS);
+        desc->mode = SC_HULL_UNIFORM;
+        desc->divisions = (int)n;
+        return SC_OK;
+    }
+    if (!strncmp(text, "adaptive:", 9)) {
+        double tol = strtod(text + 9, &end);
+        if (end == text + 9 || *end || !(tol > 0) || !(tol < 1))
+            return sc_fail(err, NULL, 0,
+                           "hull '%s': adaptive:TOL needs 0 < TOL < 1 (a fraction of "
+                           "the scene's size)", text);
+        desc->mode = SC_HULL_ADAPTIVE;
+        desc->tolerance = tol;
+        return SC_OK;
+    }
+    return sc_fail(err, NULL, 0, "hull '%s': expected uniform:N or adaptive:TOL", text);
+}
+
+void sc_hull_desc_format(const sc_hull_desc *desc, char *buf, size_t size)
+{
+    if (desc->mode == SC_HULL_UNIFORM)
+        snprintf(buf, size, "uniform:%d", desc->divisions ? desc->divisions : DEFAULT_DIVISIONS);
+    else
+        snprintf(buf, size, "adaptive:%g",
+                 desc->tolerance > 0 ? desc->tolerance : SC_HULL_DEFAULT_TOLERANCE);
+}
+
+/* ---- Bézier pieces ---- */
+
+static size_t piece_points(const piece *p)
+{
+    return (size_t)(p->deg_u + 1) * (size_t)(p->deg_v + 1);
+}
+
+/* Splits p along dir (0: u, 1: v) at the fraction f of its rectangle into
+ * lo and hi (their cp arrays are allocated): de Casteljau at f, i.e. knot
+ * insertion to full multiplicity. */
+static void split_at(const piece *p, int dir, double f, piece *lo, piece *hi)
+{
+    int nu = p->deg_u + 1, nv = p->deg_v + 1;
+    int n = dir == 0 ? nu : nv;
+    int lines = dir == 0 ? nv : nu;
+    *lo = *hi = *p;
+    lo->cp = sc_alloc(piece_points(p) * 4, sizeof(double));
+    hi->cp = sc_alloc(piece_points(p) * 4, sizeof(double));
+    double cut = p->local[2 * dir] + f * (p->local[2 * dir + 1] - p->local[2 * dir]);
+    lo->local[2 * dir + 1] = cut;
+    hi->local[2 * dir] = cut;
+    double *work = sc_alloc((size_t)n * 4, sizeof(double));
+    for (int line = 0; line < lines; line++) {
+        for (int k = 0; k < n; k++) {
+            int i = dir == 0 ? k : line, j = dir == 0 ? line : k;
+            memcpy(work + 4 * k, p->cp + 4 * (j * nu + i), 4 * sizeof(double));
+        }
+        /* After round r, work[0] is the r-th point of the lower part and
+         * work[n-1-r] the mirrored one of the upper part. */
+        for (int r = 0; r < n; r++) {
+            int i_lo = dir == 0 ? r : line, j_lo = dir == 0 ? line : r;
+            int i_hi = dir == 0 ? n - 1 - r : line, j_hi = dir == 0 ? line : n - 1 - r;
+            memcpy(lo->cp + 4 * (j_lo * nu + i_lo), work, 4 * sizeof(double));
+            memcpy(hi->cp + 4 * (j_hi * nu + i_hi), work + 4 * (n - 1 - r),
+                   4 * sizeof(double));
+            for (int k = 0; k < n - 1 - r; k++)
+                for (int c = 0; c < 4; c++)
+                    work[4 * k + c] = (1 - f) * work[4 * k + c] + f * work[4 * (k + 1) + c];
+        }
+    }
+    free(work);
+}
+
+/* Euclidean world-space point (i, j) of a piece. */
+static void piece_point(const builder *b, const piece *p, int i, int j, double out[3])
+{
+    const double *h = p->cp + 4 * (j * (p->deg_u + 1) + i);
+    double e[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
+    sc_xform_point(b->surface->xform, e, out);
+}
+
+static double dist3(const double a[3], const double b[3])
+{
+    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* How far the control mesh is from flat, per direction: the largest
+ * distance of a control point from the bilinear patch through the four
+ * corners, and which direction holds more of it (the larger deviation of
+ * the lines along u from their chords, against those along v). */
+static double piece_flatness(const builder *b, const piece *p, int *split_dir)
+{
+    int du = p->deg_u, dv = p->deg_v;
+    double c00[3], c10[3], c01[3], c11[3];
+    piece_point(b, p, 0, 0, c00);
+    piece_point(b, p, du, 0, c10);
+    piece_point(b, p, 0, dv, c01);
+    piece_point(b, p, du, dv, c11);
+    double bilinear = 0, along_u = 0, along_v = 0;
+    for (int j = 0; j <= dv; j++)
+        for (int i = 0; i <= du; i++) {
+            double s = (double)i / du, t = (double)j / dv, q[3], x[3];
+            piece_point(b, p, i, j, x);
+            for (int c = 0; c < 3; c++)
+                q[c] = (1 - t) * ((1 - s) * c00[c] + s * c10[c]) +
+                       t * ((1 - s) * c01[c] + s * c11[c]);
+            bilinear = fmax(bilinear, dist3(x, q));
+            /* chords of the row j (along u) and of the column i (along v) */
+            double r0[3], r1[3], k0[3], k1[3], on_row[3], on_col[3];
+            piece_point(b, p, 0, j, r0);
+            piece_point(b, p, du, j, r1);
+            piece_point(b, p, i, 0, k0);
+            piece_point(b, p, i, dv, k1);
+            for (int c = 0; c < 3; c++) {
+                on_row[c] = (1 - s) * r0[c] + s * r1[c];
+                on_col[c] = (1 - t) * k0[c] + t * k1[c];
+            }
+            along_u = fmax(along_u, dist3(x, on_row));
+            along_v = fmax(along_v, dist3(x, on_col));
+        }
+    *split_dir = along_u >= along_v ? 0 : 1;
+    return bilinear;
+}
+
+/* ---- output ---- */
+
+static sc_subpatch *add_subpatch(builder *b)
+{
+    sc_hulls *h = b->out;
+    if (h->count == b->cap_sub) {
+        b->cap_sub = b->cap_sub ? 2 * b->cap_sub : 64;
+        h->subpatches = sc_realloc(h->subpatches, (size_t)b->cap_sub, sizeof *h->subpatches);
+    }
+    sc_subpatch *s = &h->subpatches[h->count++];
+    memset(s, 0, sizeof *s);
+    return s;
+}
+
+static void reserve(builder *b, int vertices, int indices)
+{
+    sc_hulls *h = b->out;
+    while (h->nvertices + vertices > b->cap_vert) {
+        b->cap_vert = b->cap_vert ? 2 * b->cap_vert : 1024;
+        h->vertices = sc_realloc(h->vertices, (size_t)b->cap_vert, sizeof *h->vertices);
+    }
+    while (h->nindices + indices > b->cap_idx) {
+        b->cap_idx = b->cap_idx ? 2 * b->cap_idx : 4096;
+        h->indices = sc_realloc(h->indices, (size_t)b->cap_idx, sizeof *h->indices);
+    }
+}
+
+/* Runs qhull on n points; on success stores the hull's triangles (3 input
+ * point numbers each, counter-clockwise seen from outside) in *tris and
+ * returns their count; -1 when qhull finds no 3D hull. */
+static int qhull_triangles(builder *b, double *coords, int n, int **tris)
+{
+    qhT qh_storage;
+    qhT *qh = &qh_storage;
+    qh_zero(qh, b->qhull_log);
+    char options[] = "qhull Qt";
+    int exitcode = qh_new_qhull(qh, 3, n, coords, False, options, NULL, b->qhull_log);
+    int count = -1;
+    if (!exitcode) {
+        count = 0;
+        int cap = 0;
+        facetT *facet;
+        FORALLfacets {
+            int ids[3], k = 0;
+            double *pts[3];
+            vertexT *vertex, **vertexp;
+            FOREACHvertex_(facet->vertices) {
+                if (k < 3) {
+                    pts[k] = vertex->point;
+                    ids[k] = qh_pointid(qh, vertex->point);
+                }
+                k++;
+            }
+            if (k != 3)
+                continue;  /* "Qt" makes every facet a triangle */
+            double e1[3], e2[3], nrm[3];
+            for (int c = 0; c < 3; c++) {
+                e1[c] = pts[1][c] - pts[0][c];
+                e2[c] = pts[2][c] - pts[0][c];
+            }
+            nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            /* qhull's facet normals point outwards; its vertex order does not
+             * follow them. */
+            if (nrm[0] * facet->normal[0] + nrm[1] * facet->normal[1] +
+                    nrm[2] * facet->normal[2] < 0) {
+                int t = ids[1];
+                ids[1] = ids[2];
+                ids[2] = t;
+            }
+            if (3 * (count + 1) > cap) {
+                cap = cap ? 2 * cap : 96;
+                *tris = sc_realloc(*tris, (size_t)cap, sizeof(int));
+            }
+            memcpy(*tris + 3 * count, ids, sizeof ids);
+            count++;
+        }
+    }
+    qh_freeqhull(qh, !qh_ALL);
+    int curlong, totlong;
+    qh_memfreeshort(qh, &curlong, &totlong);
+    return count;
+}
+
+/* The hull of one piece, appended as a sub-patch. */
+static int emit_hull(builder *b, const piece *p, sc_error *err)
+{
+    int np = (int)piece_points(p);
+    double *world = sc_alloc((size_t)np * 3, sizeof(double));
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int j = 0; j <= p->deg_v; j++)
+        for (int i = 0; i <= p->deg_u; i++) {
+            double *x = world + 3 * (j * (p->deg_u + 1) + i);
+            piece_point(b, p, i, j, x);
+            for (int c = 0; c < 3; c++) {
+                lo[c] = fmin(lo[c], x[c]);
+                hi[c] = fmax(hi[c], x[c]);
+            }
+        }
+    double size = dist3(lo, hi);
+    if (!(size > 0)) {  /* collapsed to one point: nothing to draw */
+        free(world);
+        return SC_OK;
+    }
+    int *tris = NULL;
+    int copies = 1;
+    double *coords = sc_alloc((size_t)np * 3, sizeof(double));
+    memcpy(coords, world, (size_t)np * 3 * sizeof(double));
+    int ntris = np >= 4 ? qhull_triangles(b, coords, np, &tris) : -1;
+    if (ntris < 0) {
+        /* Flat or collinear control points (a planar patch) have no 3D hull:
+         * bound them by a thin slab, every point pushed a little along each
+         * axis both ways. */
+        copies = 6;
+        double eps = 1e-5 * size;
+        coords = sc_realloc(coords, (size_t)np * 6 * 3, sizeof(double));
+        for (int k = 0; k < np; k++)
+            for (int c = 0; c < 6; c++) {
+                double *q = coords + 3 * (6 * k + c);
+                memcpy(q, world + 3 * k, 3 * sizeof(double));
+                q[c / 2] += c % 2 ? eps : -eps;
+            }
+        ntris = qhull_triangles(b, coords, np * 6, &tris);
+    }
+    free(world);
+    if (ntris < 0) {
+        free(coords);
+        free(tris);
+        return sc_fail(err, NULL, 0,
+                       "surface %d (%s): qhull found no hull for a sub-patch of patch %d",
+                       b->surface_index, b->surface->name, b->patch_index);
+    }
+    int nin = np * copies;
+    reserve(b, nin, 3 * ntris);
+    sc_hulls *h = b->out;
+    sc_subpatch *s = add_subpatch(b);
+    s->surface = b->surface_index;
+    s->patch = b->patch_index;
+    memcpy(s->local, p->local, sizeof s->local);
+    const sc_bezier_patch *bp = b->patch;
+    s->domain[0] = bp->u0 + (bp->u1 - bp->u0) * p->local[0];
+    s->domain[1] = bp->u0 + (bp->u1 - bp->u0) * p->local[1];
+    s->domain[2] = bp->v0 + (bp->v1 - bp->v0) * p->local[2];
+    s->domain[3] = bp->v0 + (bp->v1 - bp->v0) * p->local[3];
+    s->first_vertex = h->nvertices;
+    s->first_index = h->nindices;
+    for (int c = 0; c < 3; c++) {
+        s->lo[c] = INFINITY;
+        s->hi[c] = -INFINITY;
+    }
+    /* Hull vertices are the input points the triangles use, once each; an
+     * input point carries the parameters of the control point it came from. */
+    int *vertex_of = sc_alloc((size_t)nin, sizeof(int));
+    for (int k = 0; k < nin; k++)
+        vertex_of[k] = -1;
+    for (int t = 0; t < 3 * ntris; t++) {
+        int k = tris[t];
+        if (vertex_of[k] < 0) {
+            int cp_index = k / copies;
+            int i = cp_index % (p->deg_u + 1), j = cp_index / (p->deg_u + 1);
+            sc_hull_vertex *v = &h->vertices[h->nvertices];
+            memcpy(v->pos, coords + 3 * k, sizeof v->pos);
+            v->uv[0] = p->local[0] + (p->local[1] - p->local[0]) * i / p->deg_u;
+            v->uv[1] = p->local[2] + (p->local[3] - p->local[2]) * j / p->deg_v;
+            for (int c = 0; c < 3; c++) {
+                s->lo[c] = fmin(s->lo[c], v->pos[c]);
+                s->hi[c] = fmax(s->hi[c], v->pos[c]);
+            }
+            vertex_of[k] = h->nvertices++;
+        }
+        h->indices[h->nindices++] = (uint32_t)vertex_of[k];
+    }
+    s->vertex_count = h->nvertices - s->first_vertex;
+    s->index_count = h->nindices - s->first_index;
+    free(vertex_of);
+    free(tris);
+    free(coords);
+    return SC_OK;
+}
+
+/* Adaptive refinement: split along the less flat direction until the mesh
+ * is flat within the tolerance or the depth is used up. Takes ownership of
+ * p->cp. */
+static int refine(builder *b, piece *p, int depth, sc_error *err)
+{
+    int dir;
+    double flatness = piece_flatness(b, p, &dir);
+    int status;
+    if (flatness <= b->tolerance || depth >= b->max_depth) {
+        status = emit_hull(b, p, err);
+    } else {
+        piece lo, hi;
+        split_at(p, dir, 0.5, &lo, &hi);
+        status = refine(b, &lo, depth + 1, err);
+        if (status == SC_OK)
+            status = refine(b, &hi, depth + 1, err);
+        else
+            free(hi.cp);
+    }
+    free(p->cp);
+    p->cp = NULL;
+    return status;
+}
+
+/* Uniform refinement: n × n pieces of equal parameter size, cut off strip
+ * by strip at 1/n, 1/(n-1), … of what is left. */
+static int uniform(builder *b, const piece *whole, int n, sc_error *err)
+{
+    piece rest_u = *whole;
+    rest_u.cp = sc_alloc(piece_points(whole) * 4, sizeof(double));
+    memcpy(rest_u.cp, whole->cp, piece_points(whole) * 4 * sizeof(double));
+    int status = SC_OK;
+    for (int a = 0; a < n && status == SC_OK; a++) {
+        piece strip, next_u;
+        if (a < n - 1) {
+            split_at(&rest_u, 0, 1.0 / (n - a), &strip, &next_u);
+            free(rest_u.cp);
+            rest_u = next_u;
+        } else {
+            strip = rest_u;
+            rest_u.cp = NULL;
+        }
+        for (int c = 0; c < n && status == SC_OK; c++) {
+            piece cell, next_v;
+            if (c < n - 1) {
+                split_at(&strip, 1, 1.0 / (n - c), &cell, &next_v);
+                free(strip.cp);
+                strip = next_v;
+            } else {
+                cell = strip;
+                strip.cp = NULL;
+            }
+            status = emit_hull(b, &cell, err);
+            free(cell.cp);
+        }
+        free(strip.cp);
+    }
+    free(rest_u.cp);
+    return status;
+}
+
+int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
+                   sc_error *err)
+{
+    static const sc_hull_desc defaults = {0};
+    if (!desc)
+        desc = &defaults;
+    memset(hulls, 0, sizeof *hulls);
+    builder b = {.out = hulls};
+    double lo[3], hi[3];
+    double diag = sc_scene_bounds(scene, lo, hi) ? dist3(lo, hi) : 0;
+    b.tolerance = (desc->tolerance > 0 ? desc->tolerance : SC_HULL_DEFAULT_TOLERANCE) * diag;
+    b.max_depth = desc->max_depth > 0 ? desc->max_depth : DEFAULT_MAX_DEPTH;
+    int divisions = desc->divisions > 0 ? desc->divisions : DEFAULT_DIVISIONS;
+    b.qhull_log = fopen("/dev/null", "w");
+    if (!b.qhull_log)
+        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
+    int status = SC_OK;
+    for (int si = 0; si < scene->nsurfaces && status == SC_OK; si++) {
+        const sc_surface *surf = &scene->surfaces[si];
+        sc_bezier_patch *patches;
+        int npatches;
+        sc_surface_to_bezier(surf, &patches, &npatches);
+        b.surface = surf;
+        b.surface_index = si;
+        for (int pi = 0; pi < npatches && status == SC_OK; pi++) {
+            b.patch = &patches[pi];
+            b.patch_index = pi;
+            piece p = {.deg_u = patches[pi].deg_u, .deg_v = patches[pi].deg_v,
+                       .local = {0, 1, 0, 1}};
+            if (desc->mode == SC_HULL_UNIFORM) {
+                p.cp = patches[pi].cp;
+                status = uniform(&b, &p, divisions, err);
+            } else {
+                p.cp = sc_alloc(piece_points(&p) * 4, sizeof(double));
+                memcpy(p.cp, patches[pi].cp, piece_points(&p) * 4 * sizeof(double));
+                status = refine(&b, &p, 0, err);
+            }
+        }
+        hulls->npatches += npatches;
+        for (int pi = 0; pi < npatches; pi++)
+            sc_bezier_patch_free(&patches[pi]);
+        free(patches);
+    }
+    fclose(b.qhull_log);
+    if (status != SC_OK)
+        sc_hulls_free(hulls);
+    return status;
+}
+
+void sc_hulls_free(sc_hulls *hulls)
+{
+    free(hulls->subpatches);
+    free(hulls->vertices);
+    free(hulls->indices);
+    memset(hulls, 0, sizeof *hulls);
+}
+
+int sc_hull_contains(const sc_hulls *hulls, int index, const double p[3])
+{
+    const sc_subpatch *s = &hulls->subpatches[index];
+    for (int c = 0; c < 3; c++)
+        if (p[c] < s->lo[c] || p[c] > s->hi[c])
+            return 0;
+    /* Inside a convex hull = behind the plane of every outward triangle. */
+    for (int t = 0; t < s->index_count; t += 3) {
+        const uint32_t *tri = hulls->indices + s->first_index + t;
+        const double *a = hulls->vertices[tri[0]].pos, *b = hulls->vertices[tri[1]].pos,
+                     *c = hulls->vertices[tri[2]].pos;
+        double e1[3], e2[3], d[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = b[k] - a[k];
+            e2[k] = c[k] - a[k];
+            d[k] = p[k] - a[k];
+        }
+        double n0 = e1[1] * e2[2] - e1[2] * e2[1], n1 = e1[2] * e2[0] - e1[0] * e2[2],
+               n2 = e1[0] * e2[1] - e1[1] * e2[0];
+        if (n0 * d[0] + n1 * d[1] + n2 * d[2] > 0)
+            return 0;
+    }
+    return 1;
+}

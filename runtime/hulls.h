@@ -1,0 +1,83 @@
+/* hulls.h — proxy geometry for ray casting (Pabst et al. 2006, section 4.4):
+ * every surface is cut into Bézier patches, every patch into sub-patches —
+ * uniformly (n × n) or adaptively (split until the control mesh is flat
+ * within a tolerance, or a maximum depth) — and each sub-patch is bounded by
+ * the convex hull of its control points (libqhull). Rasterising a hull
+ * starts one ray per covered pixel; the hull carries the start values of
+ * the intersection: the centre of its parameter rectangle ("mid") and, per
+ * vertex, the parameters of the control point the vertex is ("cp").
+ *
+ * Positions are in world space (each surface's transform applied); by the
+ * convex hull property of Bézier patches with positive weights each hull
+ * holds its piece of surface. */
+#ifndef SC_HULLS_H
+#define SC_HULLS_H
+
+#include <stdint.h>
+
+#include "scene.h"
+
+typedef enum sc_hull_mode {
+    SC_HULL_ADAPTIVE = 0,
+    SC_HULL_UNIFORM,
+} sc_hull_mode;
+
+/* Zero means default in every field. */
+typedef struct sc_hull_desc {
+    sc_hull_mode mode;
+    int divisions;       /* uniform: n × n sub-patches per Bézier patch (2) */
+    double tolerance;    /* adaptive: largest distance of a control point from
+                            the bilinear patch through the sub-patch's corners,
+                            as a fraction of the scene's bounding-box diagonal
+                            (SC_HULL_DEFAULT_TOLERANCE) */
+    int max_depth;       /* adaptive: most splits of one Bézier patch, along u
+                            and v together (8) */
+} sc_hull_desc;
+
+#define SC_HULL_DEFAULT_TOLERANCE 0.003
+
+typedef struct sc_hull_vertex {
+    double pos[3];       /* world space */
+    double uv[2];        /* the control point's parameters, local to its
+                            Bézier patch ([0, 1]²): the "cp" start */
+} sc_hull_vertex;
+
+/* One sub-patch and its hull. */
+typedef struct sc_subpatch {
+    int surface;         /* index of the surface in the scene */
+    int patch;           /* index of its Bézier patch within the surface,
+                            u fastest, as sc_surface_to_bezier numbers them */
+    double local[4];     /* (u0, u1, v0, v1) in the Bézier patch's [0, 1]² */
+    double domain[4];    /* the same rectangle in the surface's parameters */
+    int first_vertex, vertex_count;
+    int first_index, index_count;  /* 3 per triangle */
+    double lo[3], hi[3]; /* bounding box of the hull */
+} sc_subpatch;
+
+typedef struct sc_hulls {
+    int count;
+    sc_subpatch *subpatches;
+    int nvertices;
+    sc_hull_vertex *vertices;
+    int nindices;
+    uint32_t *indices;   /* into vertices; triangles counter-clockwise seen
+                            from outside the hull */
+    int npatches;        /* Bézier patches the sub-patches came from */
+} sc_hulls;
+
+/* "uniform:N" or "adaptive:TOL" (TOL as in sc_hull_desc.tolerance). */
+int sc_hull_desc_parse(const char *text, sc_hull_desc *desc, sc_error *err);
+/* The same syntax back, with the defaults filled in. */
+void sc_hull_desc_format(const sc_hull_desc *desc, char *buf, size_t size);
+
+/* Builds the hulls of every surface of the scene. Collapsed sub-patches (all
+ * control points in one point) get no hull; flat ones a thin slab. */
+int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
+                   sc_error *err);
+void sc_hulls_free(sc_hulls *hulls);
+
+/* Whether the world-space point p lies inside hull `index` (or on it):
+ * hulls that hold the eye are drawn by their back faces. */
+int sc_hull_contains(const sc_hulls *hulls, int index, const double p[3]);
+
+#endif

@@ -1,0 +1,178 @@
+/* programs.c — the program cache (programs.h): keys are looked up by their
+ * canonical text; a miss runs gen's whole pipeline (scg_generate: build,
+ * optimise, emit, glslang) and then the driver's compiler. */
+#include "programs.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "emit_glsl.h"
+
+typedef struct entry {
+    char key_text[SCG_KEY_MAX];
+    scg_key key;
+    GLuint program;
+    double gen_ms, gl_ms;
+} entry;
+
+typedef struct vertex_shader {
+    char name[64];
+    GLuint shader;
+} vertex_shader;
+
+struct sc_program_cache {
+    const sc_gl *gl;
+    int count, cap;
+    entry *entries;
+    int nvertex, cap_vertex;
+    vertex_shader *vertex;
+};
+
+sc_program_cache *sc_program_cache_create(const sc_gl *gl)
+{
+    sc_program_cache *cache = sc_alloc(1, sizeof *cache);
+    cache->gl = gl;
+    return cache;
+}
+
+void sc_program_cache_destroy(sc_program_cache *cache)
+{
+    if (!cache)
+        return;
+    for (int i = 0; i < cache->count; i++)
+        cache->gl->DeleteProgram(cache->entries[i].program);
+    for (int i = 0; i < cache->nvertex; i++)
+        cache->gl->DeleteShader(cache->vertex[i].shader);
+    free(cache->entries);
+    free(cache->vertex);
+    free(cache);
+}
+
+/* Compiles one stage; on failure err gets the driver's log and the key. */
+static GLuint compile(const sc_gl *gl, GLenum stage, const char *source, const char *key,
+                      sc_error *err)
+{
+    GLuint shader = gl->CreateShader(stage);
+    gl->ShaderSource(shader, 1, &source, NULL);
+    gl->CompileShader(shader);
+    GLint ok = 0;
+    gl->GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[400];
+        gl->GetShaderInfoLog(shader, sizeof log, NULL, log);
+        gl->DeleteShader(shader);
+        sc_fail(err, NULL, 0, "the driver rejected the %s program: %s",
+                stage == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+        if (err)
+            snprintf(err->key, sizeof err->key, "%s", key);
+        return 0;
+    }
+    return shader;
+}
+
+static GLuint vertex_shader_for(sc_program_cache *cache, const scg_generated *gen,
+                                sc_error *err)
+{
+    for (int i = 0; i < cache->nvertex; i++)
+        if (!strcmp(cache->vertex[i].name, gen->vertex_name))
+            return cache->vertex[i].shader;
+    GLuint shader = compile(cache->gl, GL_VERTEX_SHADER, scg_text_str(&gen->vertex), gen->key,
+                            err);
+    if (!shader)
+        return 0;
+    if (cache->nvertex == cache->cap_vertex) {
+        cache->cap_vertex = cache->cap_vertex ? 2 * cache->cap_vertex : 4;
+        cache->vertex = sc_realloc(cache->vertex, (size_t)cache->cap_vertex, sizeof *cache->vertex);
+    }
+    vertex_shader *v = &cache->vertex[cache->nvertex++];
+    snprintf(v->name, sizeof v->name, "%s", gen->vertex_name);
+    v->shader = shader;
+    return shader;
+}
+
+int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *out,
+                       sc_error *err)
+{
+    char text[SCG_KEY_MAX];
+    scg_key_format(key, text, sizeof text);
+    for (int i = 0; i < cache->count; i++)
+        if (!strcmp(cache->entries[i].key_text, text)) {
+            out->id = (uint32_t)i + 1;
+            return SC_OK;
+        }
+    out->id = 0;
+    const sc_gl *gl = cache->gl;
+    double t0 = sc_now();
+    scg_generated gen;
+    if (scg_generate(key, &gen, err) != SC_OK)
+        return SC_FAIL;
+    double t1 = sc_now();
+    GLuint vs = vertex_shader_for(cache, &gen, err);
+    GLuint fs = vs ? compile(gl, GL_FRAGMENT_SHADER, scg_text_str(&gen.fragment), text, err) : 0;
+    scg_generated_free(&gen);
+    if (!fs)
+        return SC_FAIL;
+    GLuint program = gl->CreateProgram();
+    gl->AttachShader(program, vs);
+    gl->AttachShader(program, fs);
+    gl->LinkProgram(program);
+    gl->DetachShader(program, vs);
+    gl->DetachShader(program, fs);
+    gl->DeleteShader(fs);
+    GLint ok = 0;
+    gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[400];
+        gl->GetProgramInfoLog(program, sizeof log, NULL, log);
+        gl->DeleteProgram(program);
+        sc_fail(err, NULL, 0, "the driver could not link the program: %s", log);
+        if (err)
+            snprintf(err->key, sizeof err->key, "%s", text);
+        return SC_FAIL;
+    }
+    double t2 = sc_now();
+    if (cache->count == cache->cap) {
+        cache->cap = cache->cap ? 2 * cache->cap : 8;
+        cache->entries = sc_realloc(cache->entries, (size_t)cache->cap, sizeof *cache->entries);
+    }
+    entry *e = &cache->entries[cache->count++];
+    snprintf(e->key_text, sizeof e->key_text, "%s", text);
+    e->key = *key;
+    e->program = program;
+    e->gen_ms = 1e3 * (t1 - t0);
+    e->gl_ms = 1e3 * (t2 - t1);
+    sc_log(SC_LOG_INFO, "program %s: generated in %.0f ms, compiled in %.0f ms", text, e->gen_ms,
+           e->gl_ms);
+    out->id = (uint32_t)cache->count;
+    return SC_OK;
+}
+
+static const entry *lookup(const sc_program_cache *cache, sc_program program)
+{
+    if (program.id == 0 || program.id > (uint32_t)cache->count)
+        return NULL;
+    return &cache->entries[program.id - 1];
+}
+
+GLuint sc_program_gl_name(const sc_program_cache *cache, sc_program program)
+{
+    const entry *e = lookup(cache, program);
+    return e ? e->program : 0;
+}
+
+const scg_key *sc_program_key(const sc_program_cache *cache, sc_program program)
+{
+    const entry *e = lookup(cache, program);
+    return e ? &e->key : NULL;
+}
+
+int sc_program_count(const sc_program_cache *cache) { return cache->count; }
+
+void sc_program_times(const sc_program_cache *cache, sc_program program, double *gen_ms,
+                      double *gl_ms)
+{
+    const entry *e = lookup(cache, program);
+    *gen_ms = e ? e->gen_ms : 0;
+    *gl_ms = e ? e->gl_ms : 0;
+}

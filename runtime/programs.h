@@ -1,0 +1,46 @@
+/* programs.h — runtime specialization: the GL program of a variant key,
+ * generated through gen (build, optimise, emit GLSL, validate with glslang),
+ * compiled, linked and cached on first use. A scene asks for each of its
+ * distinct keys once; asking again returns the cached program. Vertex
+ * programs are shared between keys that need the same one. */
+#ifndef SC_PROGRAMS_H
+#define SC_PROGRAMS_H
+
+#include <stdint.h>
+
+#include "gl_loader.h"
+#include "key.h"
+
+/* A cached program; id 0 is no program. */
+typedef struct sc_program { uint32_t id; } sc_program;
+
+typedef struct sc_program_cache sc_program_cache;
+
+/* The cache belongs to the context that is current when it is created. */
+sc_program_cache *sc_program_cache_create(const sc_gl *gl);
+void sc_program_cache_destroy(sc_program_cache *cache);
+
+/* The program of `key`: from the cache, or generated, validated, compiled
+ * and linked now. A failure names the key (err->key) and, for a rejected
+ * program, the compiler's message. */
+int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *out,
+                       sc_error *err);
+
+GLuint sc_program_gl_name(const sc_program_cache *cache, sc_program program);
+const scg_key *sc_program_key(const sc_program_cache *cache, sc_program program);
+/* Programs in the cache. */
+int sc_program_count(const sc_program_cache *cache);
+/* Milliseconds spent on one program: generating and validating it (gen,
+ * glslang), and compiling and linking it in the driver. */
+void sc_program_times(const sc_program_cache *cache, sc_program program, double *gen_ms,
+                      double *gl_ms);
+
+/* Highest degree (in either direction) drawn with the unrolled program.
+ * Measured (docs/speed.md, `splinecast bench --degrees 3-9`): the unrolled
+ * program runs 5.5-21x faster than the generic one at every degree, and
+ * compiles faster up to 9x9 (2.1 s against 2.3 s); above that its compile
+ * time keeps growing while the generic one's stays flat, so the generic
+ * program takes over. */
+#define SC_UNROLL_MAX_DEGREE 9
+
+#endif
