@@ -7,11 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Field names as printed, by scg_audit_metric. */
 static const char *const metric_names[SCG_AUDIT_METRIC_COUNT] = {
     "inst", "spirv-inst", "vec4-regs", "tex", "bytes",
 };
-
-const char *scg_audit_metric_name(scg_audit_metric m) { return metric_names[m]; }
 
 int scg_audit_register_bound(int degree_u, int degree_v)
 {

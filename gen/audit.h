@@ -26,9 +26,6 @@ typedef enum scg_audit_metric {
     SCG_AUDIT_METRIC_COUNT
 } scg_audit_metric;
 
-/* Field names as printed: "inst", "spirv-inst", "vec4-regs", "tex", "bytes". */
-const char *scg_audit_metric_name(scg_audit_metric m);
-
 typedef struct scg_audit_line {
     char key[128];
     scg_stage stage;

@@ -18,6 +18,14 @@
 
 #include "gpu_layout.h"
 
+/* Names the key in a failure a callee reported without one. */
+static int keyed(sc_error *err, const char *key_text)
+{
+    if (err)
+        snprintf(err->key, sizeof err->key, "%s", key_text);
+    return SC_FAIL;
+}
+
 /* ---- describing a key in words, for headers ---- */
 
 static const char *kind_words(scg_patch_kind kind)
@@ -598,17 +606,12 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
 
     unsigned need = needed_results(key->outputs);
     for (int s = 0; s < SCG_OUTPUT_COUNT; s++)
-        if ((need & (1u << s)) && !use->outputs[s]) {
-            sc_fail(err, NULL, 0, "emitter: the program does not compute '%s', which the key's "
-                                  "outputs need", scg_output_info((scg_output_slot)s)->name);
-            snprintf(err->key, sizeof err->key, "%s", key_text);
-            return SC_FAIL;
-        }
-    if (scg_emit_intersect_function(prog, &parts[FUNCTION], err) != SC_OK) {
-        if (err)
-            snprintf(err->key, sizeof err->key, "%s", key_text);
-        return SC_FAIL;
-    }
+        if ((need & (1u << s)) && !use->outputs[s])
+            return sc_fail_key(err, key_text,
+                               "emitter: the program does not compute '%s', which the key's "
+                               "outputs need", scg_output_info((scg_output_slot)s)->name);
+    if (scg_emit_intersect_function(prog, &parts[FUNCTION], err) != SC_OK)
+        return keyed(err, key_text);
 
     scg_text_append(&parts[CALL], "sc_intersect(");
     const char *sep = "";
@@ -725,13 +728,6 @@ int scg_emit_vertex(const scg_key *key, scg_text *out, sc_error *err)
 }
 
 /* ---- the pipeline for one key ---- */
-
-static int keyed(sc_error *err, const char *key_text)
-{
-    if (err)
-        snprintf(err->key, sizeof err->key, "%s", key_text);
-    return SC_FAIL;
-}
 
 static int generate(const scg_key *key, bool count_spirv, scg_generated *gen, sc_error *err)
 {

@@ -115,14 +115,6 @@ static int first_error(const char *log, int *line, char *msg, size_t size)
     return *line;
 }
 
-/* sc_error_text prints the key before the message when there is no file. */
-static int set_key(sc_error *err, const char *key)
-{
-    if (err)
-        snprintf(err->key, sizeof err->key, "%s", key ? key : "");
-    return SC_FAIL;
-}
-
 static int fail_with_log(sc_error *err, const char *key, const char *what,
                          const char *log, const char *glsl)
 {
@@ -133,12 +125,12 @@ static int fail_with_log(sc_error *err, const char *key, const char *what,
     if (line > 0 && glsl)
         source_line(glsl, line, code, sizeof code);
     if (line > 0)
-        sc_fail(err, NULL, 0, "%s line %d: %s | %s", what, line, msg, code);
+        sc_fail_key(err, key, "%s line %d: %s | %s", what, line, msg, code);
     else
-        sc_fail(err, NULL, 0, "%s: %s", what, msg);
+        sc_fail_key(err, key, "%s: %s", what, msg);
     if (err)
         err->line = line;
-    return set_key(err, key);
+    return SC_FAIL;
 }
 
 int scg_spirv_count_instructions(const unsigned int *words, size_t nwords)
@@ -162,8 +154,7 @@ static glslang_shader_t *parse_stage(scg_stage stage, const char *glsl, const ch
     glslang_input_t in = input_for(stage, glsl);
     glslang_shader_t *shader = glslang_shader_create(&in);
     if (!shader) {
-        sc_fail(err, NULL, 0, "glslang could not create a shader");
-        set_key(err, key);
+        sc_fail_key(err, key, "glslang could not create a shader");
         return NULL;
     }
     if (!glslang_shader_preprocess(shader, &in) || !glslang_shader_parse(shader, &in)) {
@@ -189,9 +180,8 @@ static int count_spirv(glslang_program_t *program, scg_stage stage, const char *
     size_t start = *consumed < nwords && words[*consumed] == SPIRV_MAGIC ? *consumed : 0;
     int count = scg_spirv_count_instructions(words + start, nwords - start);
     if (count < 0) {
-        sc_fail(err, NULL, 0, "%s: no valid SPIR-V%s%s", scg_stage_extension(stage),
-                spv_messages ? ": " : "", spv_messages ? spv_messages : "");
-        return set_key(err, key);
+        return sc_fail_key(err, key, "%s: no valid SPIR-V%s%s", scg_stage_extension(stage),
+                           spv_messages ? ": " : "", spv_messages ? spv_messages : "");
     }
     *consumed = nwords;
     result->spirv_instructions = count;

@@ -100,11 +100,8 @@ static int run_error(const scg_interp *it, int i, const char *what, sc_error *er
 {
     char key[SCG_KEY_MAX];
     scg_key_format(&it->prog->key, key, sizeof key);
-    int e = sc_fail(err, NULL, 0, "interpreting %s: instruction v%d (%s): %s", key, i,
-                    scg_op_name(it->prog->insts[i].op), what);
-    if (err)
-        snprintf(err->key, sizeof err->key, "%s", key);
-    return e;
+    return sc_fail_key(err, key, "interpreting %s: instruction v%d (%s): %s", key, i,
+                       scg_op_name(it->prog->insts[i].op), what);
 }
 
 int scg_interp_run(scg_interp *it, const scg_interp_env *env, scg_interp_result *res,

@@ -232,6 +232,16 @@ scg_value scg_comp(scg_builder *b, scg_value v, int component)
     return scg_emit(b, SCG_OP_COMP, SCG_FLOAT, v, 0, 0, component);
 }
 
+scg_value scg_xyz(scg_builder *b, scg_value v)
+{
+    /* One statement per component: C leaves the order of argument
+     * evaluation open, and the listing should follow the source order. */
+    scg_value x = scg_comp(b, v, 0);
+    scg_value y = scg_comp(b, v, 1);
+    scg_value z = scg_comp(b, v, 2);
+    return scg_vec3(b, x, y, z);
+}
+
 static scg_value compare(scg_builder *b, scg_op op, scg_value x, scg_value y)
 {
     return scg_emit(b, op, SCG_BOOL, x, y, 0, 0);
@@ -296,11 +306,8 @@ static int invalid(sc_error *err, const scg_program *p, int i, const char *what)
 {
     char key[SCG_KEY_MAX];
     scg_key_format(&p->key, key, sizeof key);
-    int e = sc_fail(err, NULL, 0, "invalid IR for %s: instruction v%d (%s): %s", key, i,
-                    scg_op_name(i < p->count ? p->insts[i].op : SCG_OP_NOP), what);
-    if (err)
-        snprintf(err->key, sizeof err->key, "%s", key);
-    return e;
+    return sc_fail_key(err, key, "invalid IR for %s: instruction v%d (%s): %s", key, i,
+                       scg_op_name(i < p->count ? p->insts[i].op : SCG_OP_NOP), what);
 }
 
 /* Operand count each op takes (the VEC op takes 2–4 by type). */
@@ -323,6 +330,138 @@ static int operand_count(const scg_inst *in)
     default:
         return 1;
     }
+}
+
+/* What is wrong with the types, slot or operands of one instruction, or
+ * NULL. Operands are known to be defined before it. */
+static const char *type_error(const scg_program *p, const scg_inst *in)
+{
+    scg_type t = in->type;
+    scg_type ta = in->arg[0] ? p->insts[in->arg[0]].type : SCG_VOID;
+    scg_type tb = in->arg[1] ? p->insts[in->arg[1]].type : SCG_VOID;
+    scg_type tc = in->arg[2] ? p->insts[in->arg[2]].type : SCG_VOID;
+    switch (in->op) {
+    case SCG_OP_CONST:
+        if (t == SCG_VOID)
+            return "constant without a type";
+        break;
+    case SCG_OP_INPUT:
+        if ((unsigned)in->slot >= SCG_INPUT_COUNT || t != input_types[in->slot])
+            return "bad input slot or type";
+        break;
+    case SCG_OP_UNIFORM:
+        if ((unsigned)in->slot >= SCG_UNIFORM_COUNT || t != SCG_FLOAT)
+            return "bad uniform slot or type";
+        break;
+    case SCG_OP_FETCH:
+        if ((unsigned)in->slot >= SCG_TEXTURE_COUNT || ta != SCG_INT ||
+            t != (in->slot == SCG_TEX_KNOTS ? SCG_FLOAT : SCG_VEC4))
+            return "bad texture, index type or result type";
+        break;
+    case SCG_OP_ADD: case SCG_OP_SUB: case SCG_OP_MUL: case SCG_OP_DIV: case SCG_OP_MIN:
+    case SCG_OP_MAX: {
+        bool ok = (ta == tb && t == ta && (is_float_type(t) || t == SCG_INT)) ||
+                  (is_float_type(t) && t > SCG_FLOAT &&
+                   ((ta == t && tb == SCG_FLOAT) || (ta == SCG_FLOAT && tb == t)));
+        if (!ok)
+            return "operand types do not match";
+        break;
+    }
+    case SCG_OP_NEG: case SCG_OP_ABS:
+        if (t != ta || !(is_float_type(t) || t == SCG_INT))
+            return "operand must be int or float type";
+        break;
+    case SCG_OP_SQRT: case SCG_OP_FLOOR:
+        if (t != ta || !is_float_type(t))
+            return "operand must be a float type";
+        break;
+    case SCG_OP_DOT:
+        if (t != SCG_FLOAT || ta != tb || !is_float_type(ta))
+            return "dot of different or non-float types";
+        break;
+    case SCG_OP_CROSS:
+        if (t != SCG_VEC3 || ta != SCG_VEC3 || tb != SCG_VEC3)
+            return "cross needs two vec3";
+        break;
+    case SCG_OP_LENGTH:
+        if (t != SCG_FLOAT || !is_float_type(ta))
+            return "length of a non-float type";
+        break;
+    case SCG_OP_VEC: {
+        int w = scg_type_width(t);
+        if (t < SCG_VEC2)
+            return "vec must build vec2, vec3 or vec4";
+        for (int k = 0; k < w; k++)
+            if (p->insts[in->arg[k]].type != SCG_FLOAT)
+                return "vec components must be floats";
+        break;
+    }
+    case SCG_OP_COMP:
+        if (t != SCG_FLOAT || ta < SCG_VEC2 || in->slot < 0 || in->slot >= scg_type_width(ta))
+            return "component out of range";
+        break;
+    case SCG_OP_LT: case SCG_OP_LE: case SCG_OP_EQ: case SCG_OP_NE:
+        if (t != SCG_BOOL || ta != tb || (ta != SCG_FLOAT && ta != SCG_INT))
+            return "comparison of two floats or two ints";
+        break;
+    case SCG_OP_AND: case SCG_OP_OR:
+        if (t != SCG_BOOL || ta != SCG_BOOL || tb != SCG_BOOL)
+            return "logic on non-bool";
+        break;
+    case SCG_OP_NOT:
+        if (t != SCG_BOOL || ta != SCG_BOOL)
+            return "not of non-bool";
+        break;
+    case SCG_OP_SELECT:
+        if (ta != SCG_BOOL || tb != tc || t != tb)
+            return "select needs a bool and two values of one type";
+        break;
+    case SCG_OP_I2F:
+        if (t != SCG_FLOAT || ta != SCG_INT)
+            return "i2f of non-int";
+        break;
+    case SCG_OP_F2I:
+        if (t != SCG_INT || ta != SCG_FLOAT)
+            return "f2i of non-float";
+        break;
+    case SCG_OP_VAR:
+        if (t == SCG_VOID || in->slot < 0 || in->arg[1] || in->arg[2] ||
+            (in->arg[0] && (in->slot > 0 || ta != t)))
+            return "bad variable declaration";
+        break;
+    case SCG_OP_LOAD: {
+        const scg_inst *var = &p->insts[in->arg[0]];
+        if (!in->arg[0] || in->arg[2] || t != var->type ||
+            (var->slot > 0) != (in->arg[1] != 0) || (in->arg[1] && tb != SCG_INT))
+            return "bad load (type, or index on a non-array)";
+        break;
+    }
+    case SCG_OP_STORE: {
+        const scg_inst *var = &p->insts[in->arg[0]];
+        if (!in->arg[0] || !in->arg[1] || tb != var->type ||
+            (var->slot > 0) != (in->arg[2] != 0) || (in->arg[2] && tc != SCG_INT))
+            return "bad store (type, or index on a non-array)";
+        break;
+    }
+    case SCG_OP_IF:
+        if (ta != SCG_BOOL)
+            return "if condition is not bool";
+        break;
+    case SCG_OP_LOOP:
+        if (ta != SCG_INT || t != SCG_INT)
+            return "loop count is not int";
+        break;
+    case SCG_OP_OUTPUT:
+        if ((unsigned)in->slot >= SCG_OUTPUT_COUNT || ta != output_types[in->slot])
+            return "bad output slot or type";
+        break;
+    default:
+        break;
+    }
+    if (in->op != SCG_OP_VAR && in->op != SCG_OP_CONST && t != SCG_VOID && t != SCG_BOOL &&
+        t != SCG_INT && !is_float_type(t))
+        return "bad result type";
+    return NULL;
 }
 
 int scg_validate(const scg_program *p, sc_error *err)
@@ -365,128 +504,9 @@ int scg_validate(const scg_program *p, sc_error *err)
             for (int k = 0; k < 4; k++)
                 if ((k < nops) != (in->arg[k] != 0))
                     FAIL(i, k < nops ? "missing operand" : "extra operand");
-        scg_type t = in->type;
-        scg_type ta = in->arg[0] ? p->insts[in->arg[0]].type : SCG_VOID;
-        scg_type tb = in->arg[1] ? p->insts[in->arg[1]].type : SCG_VOID;
-        scg_type tc = in->arg[2] ? p->insts[in->arg[2]].type : SCG_VOID;
-        switch (in->op) {
-        case SCG_OP_CONST:
-            if (t == SCG_VOID)
-                FAIL(i, "constant without a type");
-            break;
-        case SCG_OP_INPUT:
-            if ((unsigned)in->slot >= SCG_INPUT_COUNT || t != input_types[in->slot])
-                FAIL(i, "bad input slot or type");
-            break;
-        case SCG_OP_UNIFORM:
-            if ((unsigned)in->slot >= SCG_UNIFORM_COUNT || t != SCG_FLOAT)
-                FAIL(i, "bad uniform slot or type");
-            break;
-        case SCG_OP_FETCH:
-            if ((unsigned)in->slot >= SCG_TEXTURE_COUNT || ta != SCG_INT ||
-                t != (in->slot == SCG_TEX_KNOTS ? SCG_FLOAT : SCG_VEC4))
-                FAIL(i, "bad texture, index type or result type");
-            break;
-        case SCG_OP_ADD: case SCG_OP_SUB: case SCG_OP_MUL: case SCG_OP_DIV: case SCG_OP_MIN:
-        case SCG_OP_MAX: {
-            bool ok = (ta == tb && t == ta && (is_float_type(t) || t == SCG_INT)) ||
-                      (is_float_type(t) && t > SCG_FLOAT &&
-                       ((ta == t && tb == SCG_FLOAT) || (ta == SCG_FLOAT && tb == t)));
-            if (!ok)
-                FAIL(i, "operand types do not match");
-            break;
-        }
-        case SCG_OP_NEG: case SCG_OP_ABS:
-            if (t != ta || !(is_float_type(t) || t == SCG_INT))
-                FAIL(i, "operand must be int or float type");
-            break;
-        case SCG_OP_SQRT: case SCG_OP_FLOOR:
-            if (t != ta || !is_float_type(t))
-                FAIL(i, "operand must be a float type");
-            break;
-        case SCG_OP_DOT:
-            if (t != SCG_FLOAT || ta != tb || !is_float_type(ta))
-                FAIL(i, "dot of different or non-float types");
-            break;
-        case SCG_OP_CROSS:
-            if (t != SCG_VEC3 || ta != SCG_VEC3 || tb != SCG_VEC3)
-                FAIL(i, "cross needs two vec3");
-            break;
-        case SCG_OP_LENGTH:
-            if (t != SCG_FLOAT || !is_float_type(ta))
-                FAIL(i, "length of a non-float type");
-            break;
-        case SCG_OP_VEC: {
-            int w = scg_type_width(t);
-            if (t < SCG_VEC2)
-                FAIL(i, "vec must build vec2, vec3 or vec4");
-            for (int k = 0; k < w; k++)
-                if (p->insts[in->arg[k]].type != SCG_FLOAT)
-                    FAIL(i, "vec components must be floats");
-            break;
-        }
-        case SCG_OP_COMP:
-            if (t != SCG_FLOAT || ta < SCG_VEC2 || in->slot < 0 || in->slot >= scg_type_width(ta))
-                FAIL(i, "component out of range");
-            break;
-        case SCG_OP_LT: case SCG_OP_LE: case SCG_OP_EQ: case SCG_OP_NE:
-            if (t != SCG_BOOL || ta != tb || (ta != SCG_FLOAT && ta != SCG_INT))
-                FAIL(i, "comparison of two floats or two ints");
-            break;
-        case SCG_OP_AND: case SCG_OP_OR:
-            if (t != SCG_BOOL || ta != SCG_BOOL || tb != SCG_BOOL)
-                FAIL(i, "logic on non-bool");
-            break;
-        case SCG_OP_NOT:
-            if (t != SCG_BOOL || ta != SCG_BOOL)
-                FAIL(i, "not of non-bool");
-            break;
-        case SCG_OP_SELECT:
-            if (ta != SCG_BOOL || tb != tc || t != tb)
-                FAIL(i, "select needs a bool and two values of one type");
-            break;
-        case SCG_OP_I2F:
-            if (t != SCG_FLOAT || ta != SCG_INT)
-                FAIL(i, "i2f of non-int");
-            break;
-        case SCG_OP_F2I:
-            if (t != SCG_INT || ta != SCG_FLOAT)
-                FAIL(i, "f2i of non-float");
-            break;
-        case SCG_OP_VAR:
-            if (t == SCG_VOID || in->slot < 0 || in->arg[1] || in->arg[2] ||
-                (in->arg[0] && (in->slot > 0 || ta != t)))
-                FAIL(i, "bad variable declaration");
-            break;
-        case SCG_OP_LOAD: {
-            const scg_inst *var = &p->insts[in->arg[0]];
-            if (!in->arg[0] || in->arg[2] || t != var->type ||
-                (var->slot > 0) != (in->arg[1] != 0) || (in->arg[1] && tb != SCG_INT))
-                FAIL(i, "bad load (type, or index on a non-array)");
-            break;
-        }
-        case SCG_OP_STORE: {
-            const scg_inst *var = &p->insts[in->arg[0]];
-            if (!in->arg[0] || !in->arg[1] || tb != var->type ||
-                (var->slot > 0) != (in->arg[2] != 0) || (in->arg[2] && tc != SCG_INT))
-                FAIL(i, "bad store (type, or index on a non-array)");
-            break;
-        }
-        case SCG_OP_IF:
-            if (ta != SCG_BOOL)
-                FAIL(i, "if condition is not bool");
-            break;
-        case SCG_OP_LOOP:
-            if (ta != SCG_INT || t != SCG_INT)
-                FAIL(i, "loop count is not int");
-            break;
-        case SCG_OP_OUTPUT:
-            if ((unsigned)in->slot >= SCG_OUTPUT_COUNT || ta != output_types[in->slot])
-                FAIL(i, "bad output slot or type");
-            break;
-        default:
-            break;
-        }
+        const char *type_problem = type_error(p, in);
+        if (type_problem)
+            FAIL(i, type_problem);
         /* Block structure. */
         switch (in->op) {
         case SCG_OP_IF:
@@ -526,11 +546,6 @@ int scg_validate(const scg_program *p, sc_error *err)
             break;
         }
         block_of[i] = stack[depth];
-        if (in->op == SCG_OP_VAR && in->type == SCG_VOID)
-            FAIL(i, "variable without a type");
-        if (in->op != SCG_OP_VAR && in->op != SCG_OP_CONST && t != SCG_VOID &&
-            t != SCG_BOOL && t != SCG_INT && !is_float_type(t))
-            FAIL(i, "bad result type");
     }
     if (depth != 0)
         FAIL(n - 1, "block not closed at the end of the program");

@@ -196,6 +196,8 @@ scg_value scg_vec3(scg_builder *b, scg_value x, scg_value y, scg_value z);
 scg_value scg_vec4(scg_builder *b, scg_value x, scg_value y, scg_value z,
                    scg_value w);
 scg_value scg_comp(scg_builder *b, scg_value v, int component);
+/* The first three components of a vec3 or vec4, as a vec3. */
+scg_value scg_xyz(scg_builder *b, scg_value v);
 scg_value scg_lt(scg_builder *b, scg_value x, scg_value y);
 scg_value scg_le(scg_builder *b, scg_value x, scg_value y);
 scg_value scg_eq(scg_builder *b, scg_value x, scg_value y);

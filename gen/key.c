@@ -140,11 +140,8 @@ enum { KEY_FIELDS = 10 };
 static int field_error(sc_error *err, const char *text, int field, const char *value,
                        const char *expected)
 {
-    int e = sc_fail(err, NULL, 0, "variant key '%s': %s field '%s': expected %s", text,
-                    field_names[field], value, expected);
-    if (err)
-        snprintf(err->key, sizeof err->key, "%s", text);
-    return e;
+    return sc_fail_key(err, text, "variant key '%s': %s field '%s': expected %s", text,
+                       field_names[field], value, expected);
 }
 
 static int parse_tolerance(const char *s, int *milli)
@@ -187,24 +184,16 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
                            "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
     for (const char *c = text; *c; c++)
         if (!(islower((unsigned char)*c) || isdigit((unsigned char)*c) || *c == '.' ||
-              *c == '-' || *c == '_')) {
-            int e = sc_fail(err, NULL, 0,
-                            "variant key '%s': character '%c' outside [a-z0-9._-]", text, *c);
-            if (err)
-                snprintf(err->key, sizeof err->key, "%.127s", text);
-            return e;
-        }
+              *c == '-' || *c == '_'))
+            return sc_fail_key(err, text, "variant key '%s': character '%c' outside [a-z0-9._-]",
+                               text, *c);
     while (nfields < KEY_FIELDS + 1) {
         const char *dash = strchr(p, '-');
         size_t len = dash ? (size_t)(dash - p) : strlen(p);
-        if (nfields == KEY_FIELDS || len >= sizeof fields[0]) {
-            int e = sc_fail(err, NULL, 0, "variant key '%s': %s", text,
-                            nfields == KEY_FIELDS ? "too many fields (expected 10 joined by '-')"
-                                                  : "field too long");
-            if (err)
-                snprintf(err->key, sizeof err->key, "%.127s", text);
-            return e;
-        }
+        if (nfields == KEY_FIELDS || len >= sizeof fields[0])
+            return sc_fail_key(err, text, "variant key '%s': %s", text,
+                               nfields == KEY_FIELDS ? "too many fields (expected 10 joined by '-')"
+                                                     : "field too long");
         memcpy(fields[nfields], p, len);
         fields[nfields][len] = 0;
         nfields++;
@@ -212,15 +201,11 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
             break;
         p = dash + 1;
     }
-    if (nfields != KEY_FIELDS) {
-        int e = sc_fail(err, NULL, 0,
-                        "variant key '%s': %d fields, expected 10: kind+degrees, poly|rat, "
-                        "dc|bern|loop, trim, method, start, itN, tolT, ertE, out.LIST",
-                        text, nfields);
-        if (err)
-            snprintf(err->key, sizeof err->key, "%.127s", text);
-        return e;
-    }
+    if (nfields != KEY_FIELDS)
+        return sc_fail_key(err, text,
+                           "variant key '%s': %d fields, expected 10: kind+degrees, poly|rat, "
+                           "dc|bern|loop, trim, method, start, itN, tolT, ertE, out.LIST",
+                           text, nfields);
 
     scg_key k;
     memset(&k, 0, sizeof k);
@@ -307,15 +292,11 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
         const char *c = canon;
         for (int f = 0; f < KEY_FIELDS; f++) {
             size_t len = strcspn(c, "-");
-            if (strlen(fields[f]) != len || strncmp(fields[f], c, len) != 0) {
-                int e = sc_fail(err, NULL, 0,
-                                "variant key '%s': %s field '%s' is not canonical: write "
-                                "'%.*s' (the whole key: %s)",
-                                text, field_names[f], fields[f], (int)len, c, canon);
-                if (err)
-                    snprintf(err->key, sizeof err->key, "%.127s", text);
-                return e;
-            }
+            if (strlen(fields[f]) != len || strncmp(fields[f], c, len) != 0)
+                return sc_fail_key(err, text,
+                                   "variant key '%s': %s field '%s' is not canonical: write "
+                                   "'%.*s' (the whole key: %s)",
+                                   text, field_names[f], fields[f], (int)len, c, canon);
             c += len + (c[len] == '-');
         }
     }
@@ -342,11 +323,7 @@ int scg_key_check(const scg_key *key, sc_error *err)
         missing = "view-dependent initial values (view) are";
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
-    if (missing) {
-        int e = sc_fail(err, NULL, 0, "variant key '%s': %s not implemented yet", text, missing);
-        if (err)
-            snprintf(err->key, sizeof err->key, "%s", text);
-        return e;
-    }
+    if (missing)
+        return sc_fail_key(err, text, "variant key '%s': %s not implemented yet", text, missing);
     return SC_OK;
 }

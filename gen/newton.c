@@ -13,7 +13,14 @@
  *
  * For Bézier keys the control points are projected onto the two planes once
  * ((n1·P + d1·w, n2·P + d2·w[, w])): every iteration then evaluates a 2D
- * (polynomial) or 3D (rational) patch instead of a 4D one. */
+ * (polynomial) or 3D (rational) patch instead of a 4D one.
+ *
+ * C leaves the order of argument evaluation open, so value numbers (and
+ * the bytes of the GLSL) follow the source order only where operands are
+ * built one statement at a time, as in project() and scg_xyz(). Nested
+ * builder calls elsewhere are numbered in the order the C compiler picks:
+ * the golden files are those of a GCC build (a clang build gives the same
+ * programs with other value numbers). */
 #include "kernels.h"
 #include "newton.h"
 #include "trim_gen.h"
@@ -34,28 +41,20 @@ typedef struct newton_ctx {
     scg_builder *b;
     const scg_key *key;
     int p, q;
-    scg_value origin, dir, n1, n2, d1, d2, tol, tol_stop;
+    scg_value origin, dir, dir_len, n1, n2, d1, d2, tol, tol_stop, zero;
+    scg_value rec, rect, surface;                               /* the record */
     scg_value cp_offset, nu, nv, knot_u, knot_v, deg_u, deg_v;  /* from the record */
+    scg_value lo, hi;                                           /* iteration box */
+    scg_value uv_var, iters_var;
     scg_value pts[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];  /* Bézier: fetched */
     scg_value proj[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)]; /* Bézier: projected */
 } newton_ctx;
-
-/* The xyz part of a vec4. Operands are built one statement at a time
- * throughout, so that the listing follows the source order (C leaves the
- * order of argument evaluation open). */
-static scg_value xyz_of(scg_builder *b, scg_value v)
-{
-    scg_value x = scg_comp(b, v, 0);
-    scg_value y = scg_comp(b, v, 1);
-    scg_value z = scg_comp(b, v, 2);
-    return scg_vec3(b, x, y, z);
-}
 
 /* Projects a homogeneous control point onto the two planes. */
 static scg_value project(newton_ctx *c, scg_value pt)
 {
     scg_builder *b = c->b;
-    scg_value xyz = xyz_of(b, pt);
+    scg_value xyz = scg_xyz(b, pt);
     scg_value e1 = scg_dot(b, c->n1, xyz);
     scg_value e2 = scg_dot(b, c->n2, xyz);
     if (!c->key->rational) {
@@ -109,7 +108,7 @@ static void eval_unrolled(newton_ctx *c, const scg_value *pts, bool project_poin
             if (project_points)
                 pt = project(c, pt);
             else if (!c->key->rational)
-                pt = xyz_of(b, pt);
+                pt = scg_xyz(b, pt);
             fetched[j * (c->p + 1) + i] = pt;
         }
     }
@@ -134,7 +133,7 @@ static void euclidean(newton_ctx *c, const scg_value h[3], scg_value e[3])
     scg_builder *b = c->b;
     scg_value xyz[3];
     for (int k = 0; k < 3; k++)
-        xyz[k] = scg_type_width(b->prog->insts[h[k]].type) == 3 ? h[k] : xyz_of(b, h[k]);
+        xyz[k] = scg_type_width(b->prog->insts[h[k]].type) == 3 ? h[k] : scg_xyz(b, h[k]);
     if (!c->key->rational) {
         for (int k = 0; k < 3; k++)
             e[k] = xyz[k];
@@ -146,40 +145,35 @@ static void euclidean(newton_ctx *c, const scg_value h[3], scg_value e[3])
         e[k] = scg_div(b, scg_sub(b, xyz[k], scg_mul(b, e[0], scg_comp(b, h[k], 3))), w);
 }
 
-/* F, Fu, Fv (vec2) at (u, v). */
-static void eval_f(newton_ctx *c, scg_value uv, scg_value f[3])
+/* F, Fu, Fv (vec2) from the Euclidean point and partials: the signed
+ * distances from the two planes and their derivatives. */
+static void plane_distances(newton_ctx *c, const scg_value h[3], scg_value f[3])
 {
     scg_builder *b = c->b;
-    scg_value u = scg_comp(b, uv, 0), v = scg_comp(b, uv, 1);
-    scg_value h[3];
-    if (c->key->eval == SCG_EVAL_LOOP || c->key->kind == SCG_PATCH_NURBS) {
-        if (c->key->eval == SCG_EVAL_LOOP)
-            eval_generic(c, u, v, h);
-        else {
-            eval_unrolled(c, NULL, true, u, v, h);
-            goto projected;
-        }
-        scg_value e[3];
-        euclidean(c, h, e);
-        scg_name(b, "F");
-        f[0] = scg_vec2(b, scg_add(b, scg_dot(b, c->n1, e[0]), c->d1),
-                        scg_add(b, scg_dot(b, c->n2, e[0]), c->d2));
-        scg_name(b, "Fu");
-        f[1] = scg_vec2(b, scg_dot(b, c->n1, e[1]), scg_dot(b, c->n2, e[1]));
-        scg_name(b, "Fv");
-        f[2] = scg_vec2(b, scg_dot(b, c->n1, e[2]), scg_dot(b, c->n2, e[2]));
-        scg_name(b, NULL);
-        return;
-    }
-    eval_unrolled(c, c->proj, false, u, v, h);
-projected:
+    scg_value e[3];
+    euclidean(c, h, e);
+    scg_name(b, "F");
+    f[0] = scg_vec2(b, scg_add(b, scg_dot(b, c->n1, e[0]), c->d1),
+                    scg_add(b, scg_dot(b, c->n2, e[0]), c->d2));
+    scg_name(b, "Fu");
+    f[1] = scg_vec2(b, scg_dot(b, c->n1, e[1]), scg_dot(b, c->n2, e[1]));
+    scg_name(b, "Fv");
+    f[2] = scg_vec2(b, scg_dot(b, c->n1, e[2]), scg_dot(b, c->n2, e[2]));
+    scg_name(b, NULL);
+}
+
+/* F, Fu, Fv from a patch evaluated on projected control points: already
+ * plane distances when polynomial; homogeneous (X1, X2, W) when rational,
+ * F = X/W, F' = (X' - F W')/W. */
+static void projected_distances(newton_ctx *c, const scg_value h[3], scg_value f[3])
+{
+    scg_builder *b = c->b;
     if (!c->key->rational) {
         f[0] = h[0];
         f[1] = h[1];
         f[2] = h[2];
         return;
     }
-    /* Homogeneous (X1, X2, W): F = X/W, F' = (X' - F W')/W. */
     scg_value w = scg_comp(b, h[0], 2);
     scg_value x[3];
     for (int k = 0; k < 3; k++)
@@ -191,6 +185,24 @@ projected:
     scg_name(b, "Fv");
     f[2] = scg_div(b, scg_sub(b, x[2], scg_mul(b, f[0], scg_comp(b, h[2], 2))), w);
     scg_name(b, NULL);
+}
+
+/* F, Fu, Fv (vec2) at (u, v). */
+static void eval_f(newton_ctx *c, scg_value uv, scg_value f[3])
+{
+    scg_builder *b = c->b;
+    scg_value u = scg_comp(b, uv, 0), v = scg_comp(b, uv, 1);
+    scg_value h[3];
+    if (c->key->eval == SCG_EVAL_LOOP) {
+        eval_generic(c, u, v, h);
+        plane_distances(c, h, f);
+        return;
+    }
+    if (c->key->kind == SCG_PATCH_NURBS)
+        eval_unrolled(c, NULL, true, u, v, h);
+    else
+        eval_unrolled(c, c->proj, false, u, v, h);
+    projected_distances(c, h, f);
 }
 
 /* True when uv lies in [lo.x, hi.x] × [lo.y, hi.y]. */
@@ -238,29 +250,26 @@ static void newton_step(newton_ctx *c, scg_value uv_var, scg_value iters_var,
     scg_store(b, done_var, scg_or(b, stop, scg_not(b, inside(b, next, lo, hi))));
 }
 
-void scg_build_newton(scg_builder *b, const scg_key *key)
+/* The ray as two planes: n1 ⟂ dir picked from the two larger components
+ * of dir (never degenerate), n2 = dir × n1 / |dir|; and the tolerances. */
+static void ray_planes(newton_ctx *c)
 {
-    newton_ctx ctx = {.b = b, .key = key, .p = key->deg_u, .q = key->deg_v};
-    newton_ctx *c = &ctx;
-    bool generic = key->eval == SCG_EVAL_LOOP;
-
-    /* The ray as two planes: n1 ⟂ dir picked from the two larger
-     * components of dir (never degenerate), n2 = dir × n1 / |dir|. */
+    scg_builder *b = c->b;
     scg_name(b, "origin");
     c->origin = scg_input(b, SCG_IN_RAY_ORIGIN);
     scg_name(b, "dir");
     c->dir = scg_input(b, SCG_IN_RAY_DIR);
     scg_name(b, NULL);
     scg_value dx = scg_comp(b, c->dir, 0), dy = scg_comp(b, c->dir, 1), dz = scg_comp(b, c->dir, 2);
-    scg_value zero = scg_const_f(b, 0.0f);
+    c->zero = scg_const_f(b, 0.0f);
     scg_value x_major = scg_lt(b, scg_abs(b, dz), scg_abs(b, dx));
-    scg_value n1 = scg_select(b, x_major, scg_vec3(b, scg_neg(b, dy), dx, zero),
-                              scg_vec3(b, zero, scg_neg(b, dz), dy));
-    scg_value dir_len = scg_length(b, c->dir);
+    scg_value n1 = scg_select(b, x_major, scg_vec3(b, scg_neg(b, dy), dx, c->zero),
+                              scg_vec3(b, c->zero, scg_neg(b, dz), dy));
+    c->dir_len = scg_length(b, c->dir);
     scg_name(b, "n1");
     c->n1 = scg_div(b, n1, scg_length(b, n1));
     scg_name(b, "n2");
-    c->n2 = scg_div(b, scg_cross(b, c->dir, c->n1), dir_len);
+    c->n2 = scg_div(b, scg_cross(b, c->dir, c->n1), c->dir_len);
     scg_name(b, "d1");
     c->d1 = scg_neg(b, scg_dot(b, c->n1, c->origin));
     scg_name(b, "d2");
@@ -268,22 +277,29 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
     /* Tolerance: key pixels × footprint per unit distance × distance to
      * the hull (t = 1 there). */
     scg_name(b, "tol");
-    c->tol = scg_mul(b, scg_const_f(b, scg_key_tolerance(key)),
-                     scg_mul(b, scg_uniform(b, SCG_UNI_FOOTPRINT), dir_len));
+    c->tol = scg_mul(b, scg_const_f(b, scg_key_tolerance(c->key)),
+                     scg_mul(b, scg_uniform(b, SCG_UNI_FOOTPRINT), c->dir_len));
     c->tol_stop = scg_mul(b, c->tol, scg_const_f(b, STOP_FRACTION));
+}
 
-    /* The record. */
+/* The record's texels (gpu_layout.h): control-point offset, net size,
+ * knot offsets and degrees where the key needs them, the parameter
+ * rectangle and the surface id. Returns texel 0. */
+static scg_value read_record(newton_ctx *c)
+{
+    scg_builder *b = c->b;
+    bool generic = c->key->eval == SCG_EVAL_LOOP;
     scg_name(b, "record");
-    scg_value rec = scg_mul(b, scg_input(b, SCG_IN_RECORD), scg_const_i(b, SCG_RECORD_TEXELS));
-    scg_value r0 = scg_fetch(b, SCG_TEX_RECORDS, rec);
+    c->rec = scg_mul(b, scg_input(b, SCG_IN_RECORD), scg_const_i(b, SCG_RECORD_TEXELS));
+    scg_value r0 = scg_fetch(b, SCG_TEX_RECORDS, c->rec);
     scg_value r1 = 0;
-    if (key->kind == SCG_PATCH_NURBS || generic)
-        r1 = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, rec, scg_const_i(b, 1)));
-    scg_value rect = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, rec, scg_const_i(b, 2)));
+    if (c->key->kind == SCG_PATCH_NURBS || generic)
+        r1 = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, c->rec, scg_const_i(b, 1)));
+    c->rect = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, c->rec, scg_const_i(b, 2)));
     scg_name(b, "cp_offset");
     c->cp_offset = scg_f2i(b, scg_comp(b, r0, 0));
     scg_name(b, NULL);
-    scg_value surface = scg_f2i(b, scg_comp(b, r0, 3));
+    c->surface = scg_f2i(b, scg_comp(b, r0, 3));
     if (r1) {
         c->nu = scg_f2i(b, scg_comp(b, r0, 1));
         c->nv = scg_f2i(b, scg_comp(b, r0, 2));
@@ -297,33 +313,154 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
             c->deg_v = scg_const_i(b, c->q);
         }
     }
+    return r0;
+}
 
-    /* Where (u, v) may go: the sub-patch domain plus its overlap, inside the
-     * record's own domain (local [0,1]² for Bézier, the rectangle for
-     * NURBS) widened by a hair. */
+/* Where (u, v) may go: the sub-patch domain plus its overlap, inside the
+ * record's own domain (local [0,1]² for Bézier, the rectangle for NURBS)
+ * widened by a hair. Returns the initial value. */
+static scg_value iteration_box(newton_ctx *c)
+{
+    scg_builder *b = c->b;
     scg_value dom = scg_input(b, SCG_IN_DOMAIN);
     scg_value dom_lo = scg_vec2(b, scg_comp(b, dom, 0), scg_comp(b, dom, 2));
     scg_value dom_hi = scg_vec2(b, scg_comp(b, dom, 1), scg_comp(b, dom, 3));
     scg_value margin = scg_mul(b, scg_sub(b, dom_hi, dom_lo), scg_const_f(b, SCG_DOMAIN_OVERLAP));
     scg_value rec_lo, rec_hi;
-    if (key->kind == SCG_PATCH_NURBS) {
-        rec_lo = scg_vec2(b, scg_comp(b, rect, 0), scg_comp(b, rect, 2));
-        rec_hi = scg_vec2(b, scg_comp(b, rect, 1), scg_comp(b, rect, 3));
+    if (c->key->kind == SCG_PATCH_NURBS) {
+        rec_lo = scg_vec2(b, scg_comp(b, c->rect, 0), scg_comp(b, c->rect, 2));
+        rec_hi = scg_vec2(b, scg_comp(b, c->rect, 1), scg_comp(b, c->rect, 3));
     } else {
         rec_lo = scg_const_vec(b, 2, (float[]){0.0f, 0.0f});
         rec_hi = scg_const_vec(b, 2, (float[]){1.0f, 1.0f});
     }
     scg_value rec_margin = scg_mul(b, scg_sub(b, rec_hi, rec_lo), scg_const_f(b, SCG_DOMAIN_EPS));
     scg_name(b, "uv_lo");
-    scg_value lo = scg_max(b, scg_sub(b, dom_lo, margin), scg_sub(b, rec_lo, rec_margin));
+    c->lo = scg_max(b, scg_sub(b, dom_lo, margin), scg_sub(b, rec_lo, rec_margin));
     scg_name(b, "uv_hi");
-    scg_value hi = scg_min(b, scg_add(b, dom_hi, margin), scg_add(b, rec_hi, rec_margin));
+    c->hi = scg_min(b, scg_add(b, dom_hi, margin), scg_add(b, rec_hi, rec_margin));
 
     scg_name(b, "uv0");
-    scg_value uv0 = key->start == SCG_START_CP
+    scg_value uv0 = c->key->start == SCG_START_CP
                         ? scg_input(b, SCG_IN_UV0)
                         : scg_mul(b, scg_add(b, dom_lo, dom_hi), scg_const_f(b, 0.5f));
     scg_name(b, NULL);
+    return uv0;
+}
+
+/* Bézier keys: the control points fetched once, and their projection onto
+ * the ray's planes; the generic Bézier program reads the net size instead. */
+static void bezier_points(newton_ctx *c, scg_value r0)
+{
+    scg_builder *b = c->b;
+    if (c->key->eval != SCG_EVAL_LOOP) {
+        scg_name(b, "P");
+        int n = (c->p + 1) * (c->q + 1);
+        for (int k = 0; k < n; k++)
+            c->pts[k] = scg_fetch(b, SCG_TEX_POINTS, scg_add(b, c->cp_offset, scg_const_i(b, k)));
+        scg_name(b, "Q");
+        for (int k = 0; k < n; k++)
+            c->proj[k] = project(c, c->pts[k]);
+        scg_name(b, NULL);
+        if (!c->key->rational)
+            for (int k = 0; k < n; k++)
+                c->pts[k] = scg_xyz(b, c->pts[k]);
+    } else {
+        c->nu = scg_f2i(b, scg_comp(b, r0, 1));
+        c->nv = scg_f2i(b, scg_comp(b, r0, 2));
+        c->knot_u = c->knot_v = scg_const_i(b, 0);
+    }
+}
+
+/* The Newton iterations from uv0: unrolled, each after the first guarded
+ * by `if (!done)`, or in a runtime loop for the generic program. `behind`
+ * (0 without early ray termination) starts the ray done. */
+static void iterate(newton_ctx *c, scg_value uv0, scg_value behind)
+{
+    scg_builder *b = c->b;
+    scg_name(b, "uv");
+    c->uv_var = scg_var(b, SCG_VEC2, 0, uv0);
+    scg_name(b, "iters");
+    c->iters_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
+    scg_name(b, "done");
+    scg_value done_var = scg_var(b, SCG_BOOL, 0, behind ? behind : scg_const_b(b, false));
+    scg_name(b, NULL);
+
+    if (c->key->eval == SCG_EVAL_LOOP) {
+        scg_loop(b, scg_const_i(b, c->key->max_iters));
+        scg_if(b, scg_load(b, done_var));
+        scg_break(b);
+        scg_endif(b);
+        newton_step(c, c->uv_var, c->iters_var, done_var, c->lo, c->hi);
+        scg_endloop(b);
+        return;
+    }
+    for (int k = 0; k < c->key->max_iters; k++) {
+        /* The first iteration runs unless early ray termination can have
+         * stopped the ray already. */
+        bool guarded = k > 0 || behind;
+        if (guarded)
+            scg_if(b, scg_not(b, scg_load(b, done_var)));
+        newton_step(c, c->uv_var, c->iters_var, done_var, c->lo, c->hi);
+        if (guarded)
+            scg_endif(b);
+    }
+}
+
+/* |F| < tol bounds the distance of S from the ray, not from the hit: at a
+ * grazing ray S can sit 1/|cos| farther along the surface. The Newton step
+ * J⁻¹F mapped back to object space, Su·Δu + Sv·Δv, is (to first order) the
+ * vector from S to the hit (returned), so its length is what the verdict
+ * compares with the tolerance. `e` holds the Euclidean point and partials, `miss`
+ * F at the final (u, v). */
+static scg_value distance_to_hit(newton_ctx *c, const scg_value e[3], scg_value miss)
+{
+    scg_builder *b = c->b;
+    scg_value ju_1 = scg_dot(b, c->n1, e[1]);
+    scg_value ju_2 = scg_dot(b, c->n2, e[1]);
+    scg_value jv_1 = scg_dot(b, c->n1, e[2]);
+    scg_value jv_2 = scg_dot(b, c->n2, e[2]);
+    scg_value m1 = scg_comp(b, miss, 0);
+    scg_value m2 = scg_comp(b, miss, 1);
+    scg_name(b, "det");
+    scg_value det = scg_sub(b, scg_mul(b, ju_1, jv_2), scg_mul(b, jv_1, ju_2));
+    scg_name(b, "error");
+    scg_value step_u = scg_div(b, scg_sub(b, scg_mul(b, jv_2, m1), scg_mul(b, jv_1, m2)), det);
+    scg_value step_v = scg_div(b, scg_sub(b, scg_mul(b, ju_1, m2), scg_mul(b, ju_2, m1)), det);
+    return scg_add(b, scg_mul(b, e[1], step_u), scg_mul(b, e[2], step_v));
+}
+
+/* Trimming runs only for a hit, on the record's trim block; a record the
+ * runtime gave no block (0) keeps everything. `r_lo`, `r_extent` map the
+ * Bézier record's local (u, v) to the surface's (0 for NURBS). */
+static scg_value trimmed_hit(newton_ctx *c, scg_value hit, scg_value uv, scg_value r_lo,
+                             scg_value r_extent)
+{
+    scg_builder *b = c->b;
+    scg_value texel3 = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, c->rec, scg_const_i(b, 3)));
+    scg_value block = scg_trim_block(b, texel3);
+    scg_name(b, "kept");
+    scg_value kept_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, true));
+    scg_name(b, NULL);
+    scg_if(b, scg_and(b, hit, scg_lt(b, scg_const_i(b, 0), block)));
+    scg_value uv_trim = scg_trim_normalise(b, block, r_lo, r_extent, uv);
+    scg_store(b, kept_var, scg_trim_kept(b, c->key, block, uv_trim, 0));
+    scg_endif(b);
+    scg_name(b, "hit");
+    hit = scg_and(b, hit, scg_load(b, kept_var));
+    scg_name(b, NULL);
+    return hit;
+}
+
+void scg_build_newton(scg_builder *b, const scg_key *key)
+{
+    newton_ctx ctx = {.b = b, .key = key, .p = key->deg_u, .q = key->deg_v};
+    newton_ctx *c = &ctx;
+    bool generic = key->eval == SCG_EVAL_LOOP;
+
+    ray_planes(c);
+    scg_value r0 = read_record(c);
+    scg_value uv0 = iteration_box(c);
 
     /* Early ray termination before the intersection: a hull behind the
      * nearest surface so far (t = 1 on the hull) cannot give a nearer hit. */
@@ -334,57 +471,13 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
         behind = scg_lt(b, t_limit, scg_const_f(b, 1.0f));
         scg_name(b, NULL);
     }
-
-    /* Bézier: the control points once, and their projection. */
-    if (key->kind == SCG_PATCH_BEZIER && !generic) {
-        scg_name(b, "P");
-        int n = (c->p + 1) * (c->q + 1);
-        for (int k = 0; k < n; k++)
-            c->pts[k] = scg_fetch(b, SCG_TEX_POINTS, scg_add(b, c->cp_offset, scg_const_i(b, k)));
-        scg_name(b, "Q");
-        for (int k = 0; k < n; k++)
-            c->proj[k] = project(c, c->pts[k]);
-        scg_name(b, NULL);
-        if (!key->rational)
-            for (int k = 0; k < n; k++)
-                c->pts[k] = xyz_of(b, c->pts[k]);
-    } else if (key->kind == SCG_PATCH_BEZIER) {
-        c->nu = scg_f2i(b, scg_comp(b, r0, 1));
-        c->nv = scg_f2i(b, scg_comp(b, r0, 2));
-        c->knot_u = c->knot_v = scg_const_i(b, 0);
-    }
-
-    scg_name(b, "uv");
-    scg_value uv_var = scg_var(b, SCG_VEC2, 0, uv0);
-    scg_name(b, "iters");
-    scg_value iters_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
-    scg_name(b, "done");
-    scg_value done_var = scg_var(b, SCG_BOOL, 0, behind ? behind : scg_const_b(b, false));
-    scg_name(b, NULL);
-
-    if (generic) {
-        scg_loop(b, scg_const_i(b, key->max_iters));
-        scg_if(b, scg_load(b, done_var));
-        scg_break(b);
-        scg_endif(b);
-        newton_step(c, uv_var, iters_var, done_var, lo, hi);
-        scg_endloop(b);
-    } else {
-        for (int k = 0; k < key->max_iters; k++) {
-            /* The first iteration runs unless early ray termination can
-             * have stopped the ray already. */
-            bool guarded = k > 0 || behind;
-            if (guarded)
-                scg_if(b, scg_not(b, scg_load(b, done_var)));
-            newton_step(c, uv_var, iters_var, done_var, lo, hi);
-            if (guarded)
-                scg_endif(b);
-        }
-    }
+    if (key->kind == SCG_PATCH_BEZIER)
+        bezier_points(c, r0);
+    iterate(c, uv0, behind);
 
     /* The verdict, from a full evaluation at the final (u, v). */
     scg_name(b, "uv_final");
-    scg_value uv = scg_load(b, uv_var);
+    scg_value uv = scg_load(b, c->uv_var);
     scg_name(b, NULL);
     scg_value h[3], e[3];
     if (generic)
@@ -399,27 +492,11 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
     scg_name(b, "t");
     scg_value t = scg_div(b, scg_dot(b, scg_sub(b, e[0], c->origin), c->dir),
                           scg_dot(b, c->dir, c->dir));
-    /* |F| < tol bounds the distance of S from the ray, not from the hit: at
-     * a grazing ray S can sit 1/|cos| farther along the surface. The
-     * Newton step J⁻¹F mapped back to object space, Su·Δu + Sv·Δv, is (to
-     * first order) the vector from S to the hit, so its length is what the
-     * verdict compares with the tolerance. */
-    scg_value ju_1 = scg_dot(b, c->n1, e[1]);
-    scg_value ju_2 = scg_dot(b, c->n2, e[1]);
-    scg_value jv_1 = scg_dot(b, c->n1, e[2]);
-    scg_value jv_2 = scg_dot(b, c->n2, e[2]);
-    scg_value m1 = scg_comp(b, miss, 0);
-    scg_value m2 = scg_comp(b, miss, 1);
-    scg_name(b, "det");
-    scg_value det = scg_sub(b, scg_mul(b, ju_1, jv_2), scg_mul(b, jv_1, ju_2));
-    scg_name(b, "error");
-    scg_value step_u = scg_div(b, scg_sub(b, scg_mul(b, jv_2, m1), scg_mul(b, jv_1, m2)), det);
-    scg_value step_v = scg_div(b, scg_sub(b, scg_mul(b, ju_1, m2), scg_mul(b, ju_2, m1)), det);
-    scg_value error = scg_add(b, scg_mul(b, e[1], step_u), scg_mul(b, e[2], step_v));
+    scg_value error = distance_to_hit(c, e, miss);
     scg_name(b, "hit");
     scg_value hit = scg_lt(b, scg_length(b, error), c->tol);
-    hit = scg_and(b, hit, inside(b, uv, lo, hi));
-    hit = scg_and(b, hit, scg_lt(b, zero, t));
+    hit = scg_and(b, hit, inside(b, uv, c->lo, c->hi));
+    hit = scg_and(b, hit, scg_lt(b, c->zero, t));
     if (behind)
         hit = scg_and(b, hit, scg_not(b, behind));
     if (key->ert == SCG_ERT_BOTH)
@@ -427,38 +504,24 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
     scg_name(b, "normal");
     scg_value normal = scg_cross(b, e[1], e[2]);
     scg_value normal_len = scg_length(b, normal);
-    normal = scg_select(b, scg_lt(b, zero, normal_len), scg_div(b, normal, normal_len),
-                        scg_neg(b, scg_div(b, c->dir, dir_len)));
+    normal = scg_select(b, scg_lt(b, c->zero, normal_len), scg_div(b, normal, normal_len),
+                        scg_neg(b, scg_div(b, c->dir, c->dir_len)));
     scg_name(b, "uv_surface");
     scg_value uv_out = uv, r_lo = 0, r_extent = 0;
     if (key->kind == SCG_PATCH_BEZIER) {
-        r_lo = scg_vec2(b, scg_comp(b, rect, 0), scg_comp(b, rect, 2));
-        scg_value r_hi = scg_vec2(b, scg_comp(b, rect, 1), scg_comp(b, rect, 3));
+        r_lo = scg_vec2(b, scg_comp(b, c->rect, 0), scg_comp(b, c->rect, 2));
+        scg_value r_hi = scg_vec2(b, scg_comp(b, c->rect, 1), scg_comp(b, c->rect, 3));
         r_extent = scg_sub(b, r_hi, r_lo);
         uv_out = scg_add(b, r_lo, scg_mul(b, uv, r_extent));
     }
     scg_name(b, NULL);
-    /* Trimming runs only for a hit, on the record's trim block; a record
-     * the runtime gave no block (0) keeps everything. */
-    if (key->trim != SCG_TRIM_NONE) {
-        scg_value texel3 = scg_fetch(b, SCG_TEX_RECORDS, scg_add(b, rec, scg_const_i(b, 3)));
-        scg_value block = scg_trim_block(b, texel3);
-        scg_name(b, "kept");
-        scg_value kept_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, true));
-        scg_name(b, NULL);
-        scg_if(b, scg_and(b, hit, scg_lt(b, scg_const_i(b, 0), block)));
-        scg_value uv_trim = scg_trim_normalise(b, block, r_lo, r_extent, uv);
-        scg_store(b, kept_var, scg_trim_kept(b, key, block, uv_trim, 0));
-        scg_endif(b);
-        scg_name(b, "hit");
-        hit = scg_and(b, hit, scg_load(b, kept_var));
-        scg_name(b, NULL);
-    }
+    if (key->trim != SCG_TRIM_NONE)
+        hit = trimmed_hit(c, hit, uv, r_lo, r_extent);
     scg_output(b, SCG_OUT_HIT, hit);
     scg_output(b, SCG_OUT_UV, uv_out);
     scg_output(b, SCG_OUT_T, t);
     scg_output(b, SCG_OUT_POINT, e[0]);
     scg_output(b, SCG_OUT_NORMAL, normal);
-    scg_output(b, SCG_OUT_ITERS, scg_load(b, iters_var));
-    scg_output(b, SCG_OUT_SURFACE, surface);
+    scg_output(b, SCG_OUT_ITERS, scg_load(b, c->iters_var));
+    scg_output(b, SCG_OUT_SURFACE, c->surface);
 }

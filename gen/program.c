@@ -21,6 +21,9 @@ int scg_optimize(scg_program *prog, scg_stage_fn on_stage, void *user, sc_error 
     sc_error local;
     if (!err)
         err = &local;
+    /* Each pass only removes or simplifies, so a fixed point comes in a few
+     * rounds; the cap keeps a pass that undid another's work from looping
+     * (the program is valid after every pass either way). */
     for (int round = 0; round < 100; round++) {
         bool progress = false;
         for (size_t i = 0; i < sizeof passes / sizeof passes[0]; i++) {

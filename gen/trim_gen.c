@@ -48,14 +48,6 @@ typedef struct trim_ctx {
     scg_value iters_var;       /* int variable or 0 */
 } trim_ctx;
 
-static scg_value xyz_of(scg_builder *b, scg_value v)
-{
-    scg_value x = scg_comp(b, v, 0);
-    scg_value y = scg_comp(b, v, 1);
-    scg_value z = scg_comp(b, v, 2);
-    return scg_vec3(b, x, y, z);
-}
-
 static scg_value offset(scg_builder *b, scg_value base, int k)
 {
     return k ? scg_add(b, base, scg_const_i(b, k)) : base;
@@ -107,9 +99,9 @@ static scg_value piece_crosses(trim_ctx *c, scg_value piece)
     scg_value head = scg_fetch(b, SCG_TEX_RECORDS, piece);
     scg_value pts[SCG_MAX_DEGREE + 1];
     scg_value first = scg_fetch(b, SCG_TEX_RECORDS, offset(b, piece, 1));
-    pts[0] = xyz_of(b, first);
+    pts[0] = scg_xyz(b, first);
     for (int i = 1; i <= n; i++)
-        pts[i] = xyz_of(b, scg_fetch(b, SCG_TEX_RECORDS, offset(b, piece, 1 + i)));
+        pts[i] = scg_xyz(b, scg_fetch(b, SCG_TEX_RECORDS, offset(b, piece, 1 + i)));
     scg_value u_lo = scg_comp(b, first, 3);
     scg_name(b, "cross");
     scg_value cross_var = scg_var(b, SCG_BOOL, 0, scg_lt(b, c->u, u_lo));
@@ -369,10 +361,8 @@ int scg_build_trim_probe(const scg_key *key, scg_program **out, sc_error *err)
     if (key->trim == SCG_TRIM_NONE) {
         char text[SCG_KEY_MAX];
         scg_key_format(key, text, sizeof text);
-        int e = sc_fail(err, NULL, 0, "variant key '%s': the trim probe needs a trimmed key", text);
-        if (err)
-            snprintf(err->key, sizeof err->key, "%s", text);
-        return e;
+        return sc_fail_key(err, text, "variant key '%s': the trim probe needs a trimmed key",
+                           text);
     }
     scg_program *prog = scg_program_create(key);
     scg_builder b;

@@ -8,16 +8,34 @@
 #include <string.h>
 #include <time.h>
 
-int sc_fail(sc_error *err, const char *file, int line, const char *fmt, ...)
+int sc_vfail(sc_error *err, const char *file, int line, const char *fmt, va_list ap)
 {
     if (!err)
         return SC_FAIL;
-    va_list ap;
-    va_start(ap, fmt);
     vsnprintf(err->message, sizeof err->message, fmt, ap);
-    va_end(ap);
     snprintf(err->file, sizeof err->file, "%s", file ? file : "");
     err->line = line;
+    err->key[0] = 0;
+    return SC_FAIL;
+}
+
+int sc_fail(sc_error *err, const char *file, int line, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int status = sc_vfail(err, file, line, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+int sc_fail_key(sc_error *err, const char *key, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    sc_vfail(err, NULL, 0, fmt, ap);
+    va_end(ap);
+    if (err)
+        snprintf(err->key, sizeof err->key, "%.*s", (int)sizeof err->key - 1, key ? key : "");
     return SC_FAIL;
 }
 
@@ -88,14 +106,6 @@ void *sc_realloc(void *ptr, size_t count, size_t size)
     void *p = realloc(ptr, count * size);
     if (!p)
         out_of_memory(count, size);
-    return p;
-}
-
-char *sc_strdup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *p = sc_alloc(n, 1);
-    memcpy(p, s, n);
     return p;
 }
 

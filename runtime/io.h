@@ -38,4 +38,9 @@ int sc_read_file(const char *path, char **data, size_t *size, sc_error *err);
  * Readers call it first, so that binary junk is refused before parsing. */
 int sc_check_text(const char *text, size_t size, const char *name, sc_error *err);
 
+/* The end every reader shares: on failure (status not SC_OK) the scene is
+ * freed and left empty; on success it is named after `name` and its loops
+ * are validated. Returns the status. */
+int sc_finish_read(int status, const char *name, sc_scene *scene);
+
 #endif

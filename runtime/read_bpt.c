@@ -164,11 +164,5 @@ int sc_read_bpt(const char *text, size_t size, const char *name, sc_scene *scene
     if (sc_check_text(text, size, name, err))
         return SC_FAIL;
     bpt_lexer lx = {text, text + size, text, name, 1, 1, err};
-    if (read_all(&lx, scene)) {
-        sc_scene_free(scene);
-        return SC_FAIL;
-    }
-    snprintf(scene->source, sizeof scene->source, "%s", name);
-    sc_scene_validate_loops(scene);
-    return SC_OK;
+    return sc_finish_read(read_all(&lx, scene), name, scene);
 }

@@ -109,12 +109,11 @@ static int fail(obj_reader *r, int line, const char *fmt, ...) __attribute__((fo
 
 static int fail(obj_reader *r, int line, const char *fmt, ...)
 {
-    char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int status = sc_vfail(r->err, r->name, line, fmt, ap);
     va_end(ap);
-    return sc_fail(r->err, r->name, line, "%s", msg);
+    return status;
 }
 
 static int is_space(char c)
@@ -980,11 +979,5 @@ int sc_read_obj(const char *text, size_t size, const char *name, sc_scene *scene
         sc_curve_free(&r.curves[i]);
     free(r.curves);
     free(r.materials);
-    if (status) {
-        sc_scene_free(scene);
-        return SC_FAIL;
-    }
-    snprintf(scene->source, sizeof scene->source, "%s", name);
-    sc_scene_validate_loops(scene);
-    return SC_OK;
+    return sc_finish_read(status, name, scene);
 }

@@ -21,9 +21,17 @@ typedef struct sc_error {
 } sc_error;
 
 /* Record a failure in `err` (which may be NULL) and return SC_FAIL.
- * `file` may be NULL and `line` 0 when there is no input position. */
+ * `file` may be NULL and `line` 0 when there is no input position. The
+ * key is cleared, so that a reused record never names a stale key. */
 int sc_fail(sc_error *err, const char *file, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
+/* sc_fail with a va_list, for readers' own fail helpers. */
+int sc_vfail(sc_error *err, const char *file, int line, const char *fmt, va_list ap)
+    __attribute__((format(printf, 4, 0)));
+/* A failure about the generated program of variant key `key` (no input
+ * position): sc_error_text then gives "key KEY: message". */
+int sc_fail_key(sc_error *err, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 
 /* "file:line: message" (or just the message) into buf. */
 const char *sc_error_text(const sc_error *err, char *buf, size_t size);
@@ -50,7 +58,6 @@ void sc_log(sc_log_level level, const char *fmt, ...)
  * continues with a NULL it did not expect. Sizes are checked for overflow. */
 void *sc_alloc(size_t count, size_t size);          /* zeroed */
 void *sc_realloc(void *ptr, size_t count, size_t size);
-char *sc_strdup(const char *s);
 
 /* Monotonic clock in seconds, for progress and benchmark output. */
 double sc_now(void);

@@ -165,27 +165,14 @@ static int compare_items(const void *pa, const void *pb)
 
 static float *texel(sc_trim_block *block, int index) { return block->texels + 4 * (size_t)index; }
 
-int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *err)
+/* The prepared pieces elevated to `degree`, normalised to [0,1]² and
+ * rounded to float; pieces whose v range collapses in float are left out.
+ * Returns the count kept. */
+static int pack_pieces(const sc_trim *trim, const double domain[4], int degree,
+                       packed_piece *pieces)
 {
-    memset(out, 0, sizeof *out);
-    out->degree = degree;
-    if (s->nloops == 0)
-        return SC_OK;
-    int needed = sc_surface_trim_degree(s);
-    if (degree < needed || degree > SCG_MAX_DEGREE)
-        return sc_fail(err, NULL, 0,
-                       "surface '%s': trim degree %d cannot hold its trim curves of degree %d "
-                       "(1..%d)",
-                       s->name, degree, needed, SCG_MAX_DEGREE);
-    sc_trim *trim;
-    if (sc_trim_prepare(s, &trim, err) != SC_OK)
-        return SC_FAIL;
-    double u0, u1, v0, v1;
-    sc_surface_domain(s, &u0, &u1, &v0, &v1);
-    double su = 1.0 / (u1 - u0), sv = 1.0 / (v1 - v0);
-
-    /* Pieces: elevated, normalised, rounded. */
-    packed_piece *pieces = sc_alloc((size_t)trim->npieces + 1, sizeof *pieces);
+    double u0 = domain[0], v0 = domain[2];
+    double su = 1.0 / (domain[1] - u0), sv = 1.0 / (domain[3] - v0);
     int npieces = 0;
     for (int k = 0; k < trim->npieces; k++) {
         const sc_trim_piece *src = &trim->pieces[k];
@@ -211,8 +198,21 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
         pc->u_max = float_up(hi + BOUND_MARGIN);
         npieces++;
     }
+    return npieces;
+}
 
-    /* Slabs between consecutive distinct end points. */
+/* The v slabs between consecutive distinct piece end points, and for each
+ * the pieces spanning it, ordered by u at its middle. */
+typedef struct slab_list {
+    float *ys;               /* nslabs + 1 slab boundaries (1 when no pieces) */
+    int nslabs;
+    int *start;              /* nslabs + 1: first item of each slab, then nitems */
+    slab_item *items;
+    int nitems;
+} slab_list;
+
+static void build_slabs(const packed_piece *pieces, int npieces, int degree, slab_list *out)
+{
     float *ys = sc_alloc(2 * (size_t)npieces + 1, sizeof *ys);
     int ny = 0;
     for (int k = 0; k < npieces; k++) {
@@ -224,6 +224,8 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
     for (int k = 0; k < ny; k++)
         if (m == 0 || ys[k] != ys[m - 1])
             ys[m++] = ys[k];
+    if (m == 0)
+        ys[0] = 0.0f;
     int nslabs = m > 1 ? m - 1 : 0;
     int *slab_start = sc_alloc((size_t)nslabs + 1, sizeof *slab_start);
     int items_cap = 64, nitems = 0;
@@ -257,20 +259,34 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
               compare_items);
     }
     slab_start[nslabs] = nitems;
+    *out = (slab_list){ys, nslabs, slab_start, items, nitems};
+}
 
-    /* The block. */
+static void free_slabs(slab_list *slabs)
+{
+    free(slabs->ys);
+    free(slabs->start);
+    free(slabs->items);
+}
+
+/* The texels: header, pieces, slab table, slab entries (gpu_layout.h). */
+static void write_block(const packed_piece *pieces, int npieces, const slab_list *slabs,
+                        const double domain[4], sc_trim_block *out)
+{
+    int degree = out->degree;
+    double u0 = domain[0], v0 = domain[2];
+    double su = 1.0 / (domain[1] - u0), sv = 1.0 / (domain[3] - v0);
     int piece_texels = SCG_TRIM_PIECE_TEXELS(degree);
     int slab_offset = SCG_TRIM_HEADER_TEXELS + npieces * piece_texels;
-    int item_offset = slab_offset + nslabs + 1;
+    int item_offset = slab_offset + slabs->nslabs + 1;
     out->npieces = npieces;
-    out->nslabs = nslabs;
-    out->nitems = nitems;
-    out->bias = trim->kept_without_crossings;
-    out->ntexels = item_offset + nitems;
+    out->nslabs = slabs->nslabs;
+    out->nitems = slabs->nitems;
+    out->ntexels = item_offset + slabs->nitems;
     out->texels = sc_alloc(4 * (size_t)out->ntexels, sizeof(float));
     float *h = texel(out, 0);
     h[0] = (float)npieces;
-    h[1] = (float)nslabs;
+    h[1] = (float)slabs->nslabs;
     h[2] = (float)out->bias;
     h[3] = (float)slab_offset;
     h = texel(out, 1);
@@ -290,21 +306,44 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
             memcpy(texel(out, at + 1 + i), &pc->cp[3 * i], 3 * sizeof(float));
         texel(out, at + 1)[3] = pc->u_lo;
     }
-    for (int sl = 0; sl <= nslabs; sl++) {
+    for (int sl = 0; sl <= slabs->nslabs; sl++) {
         float *t = texel(out, slab_offset + sl);
-        t[0] = m > 0 ? ys[sl] : 0.0f;
-        t[1] = (float)(item_offset + slab_start[sl]);
-        t[2] = sl < nslabs ? (float)(slab_start[sl + 1] - slab_start[sl]) : 0.0f;
+        t[0] = slabs->ys[sl];
+        t[1] = (float)(item_offset + slabs->start[sl]);
+        t[2] = sl < slabs->nslabs ? (float)(slabs->start[sl + 1] - slabs->start[sl]) : 0.0f;
     }
-    for (int i = 0; i < nitems; i++) {
+    for (int i = 0; i < slabs->nitems; i++) {
         float *t = texel(out, item_offset + i);
-        t[0] = (float)(SCG_TRIM_HEADER_TEXELS + items[i].piece * piece_texels);
-        t[1] = items[i].u_min;
-        t[2] = items[i].u_max;
+        t[0] = (float)(SCG_TRIM_HEADER_TEXELS + slabs->items[i].piece * piece_texels);
+        t[1] = slabs->items[i].u_min;
+        t[2] = slabs->items[i].u_max;
     }
-    free(items);
-    free(slab_start);
-    free(ys);
+}
+
+int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->degree = degree;
+    if (s->nloops == 0)
+        return SC_OK;
+    int needed = sc_surface_trim_degree(s);
+    if (degree < needed || degree > SCG_MAX_DEGREE)
+        return sc_fail(err, NULL, 0,
+                       "surface '%s': trim degree %d cannot hold its trim curves of degree %d "
+                       "(1..%d)",
+                       s->name, degree, needed, SCG_MAX_DEGREE);
+    sc_trim *trim;
+    if (sc_trim_prepare(s, &trim, err) != SC_OK)
+        return SC_FAIL;
+    double domain[4];
+    sc_surface_domain(s, &domain[0], &domain[1], &domain[2], &domain[3]);
+    packed_piece *pieces = sc_alloc((size_t)trim->npieces + 1, sizeof *pieces);
+    int npieces = pack_pieces(trim, domain, degree, pieces);
+    slab_list slabs;
+    build_slabs(pieces, npieces, degree, &slabs);
+    out->bias = trim->kept_without_crossings;
+    write_block(pieces, npieces, &slabs, domain, out);
+    free_slabs(&slabs);
     free(pieces);
     sc_trim_free(trim);
     return SC_OK;

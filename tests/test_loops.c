@@ -73,6 +73,15 @@ static void line(sc_curve *c, double x0, double y0, double x1, double y1)
     memcpy(c->cp, cp, sizeof cp);
 }
 
+/* A rational quadratic Bézier curve; cp holds (u·w, v·w, w) per point. */
+static void quadratic(sc_curve *c, const double cp[9])
+{
+    sc_curve_alloc(c, 2, 2, 3);
+    const double k[6] = {0, 0, 0, 1, 1, 1};
+    memcpy(c->knots, k, sizeof k);
+    memcpy(c->cp, cp, 9 * sizeof(double));
+}
+
 /* A closed polygon of lines; the end of side `gap_after` is moved by
  * (gap, 0) so that it misses the next side's start. */
 static void polygon_loop(sc_surface *s, int is_hole, const double (*xy)[2], int n,
@@ -194,11 +203,8 @@ TEST(loops_repair_at_sharp_corner_kept)
     s = make_scene(&scene);
     l = add_loop(s, 0, 3);
     line(&l->curves[0], 0.5, 0.5, 1.5, 0.5);
-    sc_curve *arc = &l->curves[1];
-    sc_curve_alloc(arc, 2, 2, 3);
-    const double k[6] = {0, 0, 0, 1, 1, 1}, cp[9] = {1.5, 0.5, 1, 0.6, 1.0, 1, 1.0, 0.2, 1};
-    memcpy(arc->knots, k, sizeof k);
-    memcpy(arc->cp, cp, sizeof cp);
+    const double cp[9] = {1.5, 0.5, 1, 0.6, 1.0, 1, 1.0, 0.2, 1};
+    quadratic(&l->curves[1], cp);
     line(&l->curves[2], 1.0, 0.2, 0.5, 0.5);
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
@@ -324,16 +330,14 @@ TEST(loops_valid_square_and_circle_untouched)
                               {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
     sc_loop *l = add_loop(s, 1, 4);
     for (int k = 0; k < 4; k++) {
-        sc_curve *c = &l->curves[k];
-        sc_curve_alloc(c, 2, 2, 3);
-        const double kn[6] = {0, 0, 0, 1, 1, 1};
-        memcpy(c->knots, kn, sizeof kn);
+        double cp[9];
         for (int i = 0; i < 3; i++) {
             double w = i == 1 ? R2 : 1;
-            c->cp[3 * i] = (1 + 0.2 * dir[2 * k + i][0]) * w;
-            c->cp[3 * i + 1] = (0.5 + 0.2 * dir[2 * k + i][1]) * w;
-            c->cp[3 * i + 2] = w;
+            cp[3 * i] = (1 + 0.2 * dir[2 * k + i][0]) * w;
+            cp[3 * i + 1] = (0.5 + 0.2 * dir[2 * k + i][1]) * w;
+            cp[3 * i + 2] = w;
         }
+        quadratic(&l->curves[k], cp);
     }
     sc_surface before;
     sc_surface_copy(&before, s);
@@ -469,15 +473,11 @@ TEST(loops_validate_twice_sharp_corner)
      * both sides: the ends differ by rounding afterwards, and moving them
      * again would change their last bits. */
     sc_loop *hole = add_loop(s, 1, 2);
-    const double k[6] = {0, 0, 0, 1, 1, 1};
     const double arcs[2][9] = {
         {1.1, 0.4, 1, 1.0 * 1.3, 0.6 * 1.3, 1.3, 0.9 * 0.5, 0.4 * 0.5, 0.5},
         {(0.9 + 6e-11) * 0.61, 0.4 * 0.61, 0.61, 1.0 * 0.8, 0.3 * 0.8, 0.8, 1.1, 0.4, 1}};
-    for (int c = 0; c < 2; c++) {
-        sc_curve_alloc(&hole->curves[c], 2, 2, 3);
-        memcpy(hole->curves[c].knots, k, sizeof k);
-        memcpy(hole->curves[c].cp, arcs[c], sizeof arcs[c]);
-    }
+    for (int c = 0; c < 2; c++)
+        quadratic(&hole->curves[c], arcs[c]);
     log_capture cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 0);
@@ -519,11 +519,8 @@ TEST(loops_corner_lobe_without_gap_kept)
     s = make_scene(&scene);
     l = add_loop(s, 0, 3);
     line(&l->curves[0], 0.7, 0.2, 1.0, 0.8);
-    sc_curve *q = &l->curves[1];
-    sc_curve_alloc(q, 2, 2, 3);
-    const double k[6] = {0, 0, 0, 1, 1, 1}, cp[9] = {1.0, 0.8, 1, 0.998, 0.8, 1, 1.3, 0.2, 1};
-    memcpy(q->knots, k, sizeof k);
-    memcpy(q->cp, cp, sizeof cp);
+    const double cp[9] = {1.0, 0.8, 1, 0.998, 0.8, 1, 1.3, 0.2, 1};
+    quadratic(&l->curves[1], cp);
     line(&l->curves[2], 1.3, 0.2, 0.7, 0.2);
     validate(&scene, &cap);
     CHECK_INT(cap.count, 0);
@@ -535,11 +532,8 @@ TEST(loops_corner_lobe_without_gap_kept)
     s = make_scene(&scene);
     l = add_loop(s, 0, 3);
     line(&l->curves[0], 0.7, 0.2, 1.0, 0.8);
-    q = &l->curves[1];
-    sc_curve_alloc(q, 2, 2, 3);
     const double far_back[9] = {1.0, 0.8, 1, 0.98, 0.8, 1, 1.3, 0.2, 1};
-    memcpy(q->knots, k, sizeof k);
-    memcpy(q->cp, far_back, sizeof far_back);
+    quadratic(&l->curves[1], far_back);
     line(&l->curves[2], 1.3, 0.2, 0.7, 0.2);
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);

@@ -90,6 +90,54 @@ static int parse_iters(const char *text, int *iters, int max)
     return n;
 }
 
+/* The keys the scene's surfaces need, each at every iteration count.
+ * Returns 0, or 1 after printing why the scene could not be read. */
+static int add_scene_keys(const char *path, const scg_key *like, const int *iters, int niters,
+                          gen_keys *set)
+{
+    sc_scene scene;
+    sc_error err = {0};
+    if (sc_read_scene(path, &scene, &err) != SC_OK)
+        return cli_report(&err);
+    sc_key_options opts;
+    options_like(like, &opts);
+    for (int s = 0; s < scene.nsurfaces; s++)
+        for (int k = 0; k < niters; k++) {
+            scg_key key;
+            opts.max_iters = iters[k];
+            sc_surface_key(&scene.surfaces[s], &opts, &key);
+            add_key(set, &key);
+        }
+    sc_scene_free(&scene);
+    return 0;
+}
+
+/* The bez keys of every degree pair in LO..HI, rational and not, each at
+ * every iteration count. Returns 0, or 2 after printing a usage error. */
+static int add_family_keys(const char *cmd, const char *family, const scg_key *like,
+                           const int *iters, int niters, gen_keys *set)
+{
+    int lo, hi, used = 0;
+    if (sscanf(family, "%d..%d%n", &lo, &hi, &used) != 2 || family[used] || lo < 1 || hi < lo ||
+        hi > SCG_MAX_DEGREE)
+        return cli_usage_error(cmd, "--family wants LO..HI with 1 <= LO <= HI <= %d",
+                               SCG_MAX_DEGREE);
+    for (int du = lo; du <= hi; du++)
+        for (int dv = lo; dv <= hi; dv++)
+            for (int rational = 0; rational < 2; rational++)
+                for (int k = 0; k < niters; k++) {
+                    scg_key key = *like;
+                    key.deg_u = du;
+                    key.deg_v = dv;
+                    key.rational = rational;
+                    key.max_iters = iters[k];
+                    if (key.eval == SCG_EVAL_LOOP)
+                        key.eval = SCG_EVAL_DC;
+                    add_key(set, &key);
+                }
+    return 0;
+}
+
 int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *first_other)
 {
     memset(set, 0, sizeof *set);
@@ -117,7 +165,7 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
             i += 2;
         } else if (!strcmp(arg, "--like") && i + 1 < argc) {
             if (scg_key_parse(argv[i + 1], &like, &err) != SC_OK) {
-                fprintf(stderr, "splinecast %s: --like %s: %s\n", cmd, argv[i + 1], err.message);
+                fprintf(stderr, "splinecast %s: --like: %s\n", cmd, err.message);
                 status = 2;
             }
             i += 2;
@@ -144,51 +192,16 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
     for (int g = 0; g < ngiven && status == 0; g++) {
         scg_key key;
         if (scg_key_parse(given[g], &key, &err) != SC_OK) {
-            fprintf(stderr, "splinecast %s: key '%s': %s\n", cmd, given[g], err.message);
+            fprintf(stderr, "splinecast %s: %s\n", cmd, err.message);
             status = 2;
         } else {
             add_key(set, &key);
         }
     }
-    if (status == 0 && scene_path) {
-        sc_scene scene;
-        if (sc_read_scene(scene_path, &scene, &err) != SC_OK) {
-            status = cli_report(&err);
-        } else {
-            sc_key_options opts;
-            options_like(&like, &opts);
-            for (int s = 0; s < scene.nsurfaces; s++)
-                for (int k = 0; k < niters; k++) {
-                    scg_key key;
-                    opts.max_iters = iters[k];
-                    sc_surface_key(&scene.surfaces[s], &opts, &key);
-                    add_key(set, &key);
-                }
-            sc_scene_free(&scene);
-        }
-    }
-    if (status == 0 && family) {
-        int lo, hi, used = 0;
-        if (sscanf(family, "%d..%d%n", &lo, &hi, &used) != 2 || family[used] || lo < 1 ||
-            hi < lo || hi > SCG_MAX_DEGREE) {
-            status = cli_usage_error(cmd, "--family wants LO..HI with 1 <= LO <= HI <= %d",
-                                     SCG_MAX_DEGREE);
-        } else {
-            for (int du = lo; du <= hi; du++)
-                for (int dv = lo; dv <= hi; dv++)
-                    for (int rational = 0; rational < 2; rational++)
-                        for (int k = 0; k < niters; k++) {
-                            scg_key key = like;
-                            key.deg_u = du;
-                            key.deg_v = dv;
-                            key.rational = rational;
-                            key.max_iters = iters[k];
-                            if (key.eval == SCG_EVAL_LOOP)
-                                key.eval = SCG_EVAL_DC;
-                            add_key(set, &key);
-                        }
-        }
-    }
+    if (status == 0 && scene_path)
+        status = add_scene_keys(scene_path, &like, iters, niters, set);
+    if (status == 0 && family)
+        status = add_family_keys(cmd, family, &like, iters, niters, set);
     if (status == 0 && iters_given && ngiven > 0) {
         /* --iters with --key: every given key at every count. */
         gen_keys expanded = {0};
@@ -253,6 +266,10 @@ static int ensure_dir(const char *dir, sc_error *err)
 static int write_outputs(const char *dir, scg_generated *gens, int count, int *files,
                          sc_error *err)
 {
+    /* The longest name: DIR/KEY.frag; a longer DIR would be cut silently. */
+    if (strlen(dir) + SCG_KEY_MAX + 8 > 1024)
+        return sc_fail(err, dir, 0, "output directory name too long (at most %d characters)",
+                       1024 - SCG_KEY_MAX - 8);
     if (ensure_dir(dir, err) != SC_OK)
         return SC_FAIL;
     char path[1024];
@@ -263,10 +280,13 @@ static int write_outputs(const char *dir, scg_generated *gens, int count, int *f
     for (int i = 0; i < count && status == SC_OK; i++) {
         const scg_generated *g = &gens[i];
         size_t frag_bytes = g->fragment.len, vert_bytes = g->vertex.len;
-        scg_text_printf(&manifest, "%s\tfrag\t%s.frag\t%zu\n", g->key, g->key, frag_bytes);
-        scg_text_printf(&manifest, "%s\tvert\t%s.vert\t%zu\n", g->key, g->vertex_name,
+        const char *frag = scg_stage_extension(SCG_STAGE_FRAGMENT);
+        const char *vert = scg_stage_extension(SCG_STAGE_VERTEX);
+        scg_text_printf(&manifest, "%s\t%s\t%s.%s\t%zu\n", g->key, frag, g->key, frag,
+                        frag_bytes);
+        scg_text_printf(&manifest, "%s\t%s\t%s.%s\t%zu\n", g->key, vert, g->vertex_name, vert,
                         vert_bytes);
-        snprintf(path, sizeof path, "%s/%s.frag", dir, g->key);
+        snprintf(path, sizeof path, "%s/%s.%s", dir, g->key, frag);
         status = write_file(path, scg_text_str(&g->fragment), frag_bytes, err);
         if (status == SC_OK) {
             printf("%s %zu\n", path, frag_bytes);
@@ -276,7 +296,7 @@ static int write_outputs(const char *dir, scg_generated *gens, int count, int *f
         for (int j = 0; j < i; j++)
             vertex_written |= !strcmp(gens[j].vertex_name, g->vertex_name);
         if (status == SC_OK && !vertex_written) {
-            snprintf(path, sizeof path, "%s/%s.vert", dir, g->vertex_name);
+            snprintf(path, sizeof path, "%s/%s.%s", dir, g->vertex_name, vert);
             status = write_file(path, scg_text_str(&g->vertex), vert_bytes, err);
             if (status == SC_OK) {
                 printf("%s %zu\n", path, vert_bytes);

@@ -3,10 +3,9 @@
  * what the reader skipped, loops dropped by validation and the world-space
  * bounding box of the control points. */
 #include <stdio.h>
-
-#include "commands.h"
 #include <stdlib.h>
 
+#include "commands.h"
 #include "io.h"
 #include "scene_keys.h"
 
