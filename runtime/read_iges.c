@@ -97,12 +97,11 @@ static const double identity_xform[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 static int fail_at(reader *r, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static int fail_at(reader *r, int line, const char *fmt, ...)
 {
-    char msg[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int status = sc_vfail(r->err, r->name, line, fmt, ap);
     va_end(ap);
-    return sc_fail(r->err, r->name, line, "%s", msg);
+    return status;
 }
 
 /* "entity TYPE (D n): ..." at `line`, or at the entity's directory line. */
@@ -1339,7 +1338,11 @@ static int finish_surface(reader *r, int owner, int base, sc_surface *s)
     else
         snprintf(s->name, sizeof s->name, "%s", r->ent[named].label);
     sc_surface *dst = sc_scene_add_surface(r->scene);
+    float default_color[3];
+    memcpy(default_color, dst->color, sizeof default_color);
     *dst = *s;
+    if (!has) /* colour 0 in field 13: none assigned, so the scene's default */
+        memcpy(dst->color, default_color, sizeof default_color);
     memset(s, 0, sizeof *s);
     return SC_OK;
 }
@@ -1673,11 +1676,5 @@ int sc_read_iges(const char *text, size_t size, const char *name, sc_scene *scen
         status = convert_all(&r);
     free(r.rec);
     free(r.ent);
-    if (status) {
-        sc_scene_free(scene);
-        return SC_FAIL;
-    }
-    snprintf(scene->source, sizeof scene->source, "%s", name);
-    sc_scene_validate_loops(scene);
-    return SC_OK;
+    return sc_finish_read(status, name, scene);
 }

@@ -114,6 +114,18 @@ static char *make_iges(const spec *e, int n)
     return buf;
 }
 
+/* Reads the file make_iges writes for `e`; prints the error on failure. */
+static int read_specs(const spec *e, int n, sc_scene *scene)
+{
+    char *text = make_iges(e, n);
+    sc_error err;
+    int status = read_text(text, scene, &err);
+    free(text);
+    if (status)
+        fprintf(stderr, "  %s\n", error_text(&err));
+    return status;
+}
+
 /* "t.igs:N:" for the line of the file holding `needle`. */
 static const char *position_of(const char *text, const char *needle)
 {
@@ -396,14 +408,8 @@ TEST(iges_arcs_exact)
         {142, "142,0,9,17,0,2;", 0, 0, NULL},
         {144, "144,9,0,1,0,19;", 0, 0, NULL},
     };
-    char *text = make_iges(e, 11);
     sc_scene s;
-    sc_error err;
-    int status = read_text(text, &s, &err);
-    free(text);
-    if (status)
-        fprintf(stderr, "  %s\n", error_text(&err));
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e, 11, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     const sc_curve *c = &s.surfaces[0].loops[0].curves[0];
     CHECK_INT(c->degree, 2);
@@ -465,14 +471,8 @@ TEST(iges_unclamped_and_subrange_126)
         {144, "144,1,1,0,13;", 0, 0, NULL},
         {126, part, 0, 0, NULL},
     };
-    char *text = make_iges(e, 9);
     sc_scene s;
-    sc_error err;
-    int status = read_text(text, &s, &err);
-    free(text);
-    if (status)
-        fprintf(stderr, "  %s\n", error_text(&err));
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e, 9, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 1);
     CHECK_INT(s.dropped_loops, 0);
     const sc_curve *c = &s.surfaces[0].loops[0].curves[0];
@@ -500,10 +500,7 @@ TEST(iges_unclamped_and_subrange_126)
         {142, "142,0,1,9,0,2;", 0, 0, NULL},
         {144, "144,1,1,0,11;", 0, 0, NULL},
     };
-    text = make_iges(e2, 7);
-    status = read_text(text, &s, &err);
-    free(text);
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e2, 7, &s), SC_OK);
     c = &s.surfaces[0].loops[0].curves[0];
     sc_curve_domain(c, &t0, &t1);
     CHECK_NEAR(t0, 3.5, 1e-12);
@@ -533,12 +530,8 @@ TEST(iges_128_subrange_and_order)
     wavy_params(a, sizeof a, "0.,2.,0.,1.");
     wavy_params(b, sizeof b, "0.5,1.5,0.25,0.75");
     spec e[] = {{128, a, 0, 0, "FULL"}, {128, b, 0, 0, NULL}};
-    char *text = make_iges(e, 2);
     sc_scene s;
-    sc_error err;
-    int status = read_text(text, &s, &err);
-    free(text);
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e, 2, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     CHECK_STR(s.surfaces[0].name, "FULL");
     CHECK_STR(s.surfaces[1].name, "iges3");
@@ -584,12 +577,8 @@ TEST(iges_trims_across_seam)
         {144, "144,1,1,0,13;", 0, 0, NULL},
         {128, cylinder, 0, 0, NULL},
     };
-    char *text = make_iges(e, 9);
     sc_scene s;
-    sc_error err;
-    int status = read_text(text, &s, &err);
-    free(text);
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e, 9, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     const sc_surface *band = &s.surfaces[0], *whole = &s.surfaces[1];
     double u0, u1, v0, v1;
@@ -619,12 +608,8 @@ TEST(iges_transform_colour_name)
         {314, "314,100.,50.,0.,6Hsunset;", 0, 0, NULL},
         {128, plane_params(1), 0, 3, NULL},
     };
-    char *text = make_iges(e, 5);
     sc_scene s;
-    sc_error err;
-    int status = read_text(text, &s, &err);
-    free(text);
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e, 5, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     const double expect[12] = {2, 0, 0, 2, 0, 2, 0, 4, 0, 0, 2, 6};
     for (int i = 0; i < 12; i++)
@@ -658,12 +643,8 @@ TEST(iges_reversed_member_and_missing_pcurve)
         {142, "142,0,17,0,19,1;", 0, 0, NULL},
         {144, "144,17,1,0,21;", 0, 0, NULL},
     };
-    char *text = make_iges(e, 12);
     sc_scene s;
-    sc_error err;
-    int status = read_text(text, &s, &err);
-    free(text);
-    CHECK_INT(status, SC_OK);
+    CHECK_INT(read_specs(e, 12, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     CHECK_INT(s.dropped_loops, 0);
     CHECK_INT(s.repaired_gaps, 0);
@@ -910,4 +891,21 @@ TEST(iges_malformed_degree_and_numbers)
     text = variant(5, "144,1,1,0,7;", 0);
     CHECK(refused(text, "entity 144 (D 11)", "expected a 142"));
     free(text);
+}
+
+/* Colour number 0 in directory field 13 means "none assigned": such
+ * surfaces get the scene's default colour, not black. */
+TEST(iges_unassigned_colour_is_default)
+{
+    sc_scene scene, blank;
+    sc_error err;
+    CHECK_INT(sc_read_scene(test_data("iges/gpucast_part.igs"), &scene, &err), SC_OK);
+    sc_scene_init(&blank);
+    const sc_surface *fresh = sc_scene_add_surface(&blank);
+    CHECK(scene.nsurfaces > 0);
+    for (int i = 0; i < scene.nsurfaces; i++)
+        for (int c = 0; c < 3; c++)
+            CHECK_NEAR(scene.surfaces[i].color[c], fresh->color[c], 0);
+    sc_scene_free(&blank);
+    sc_scene_free(&scene);
 }
