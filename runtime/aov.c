@@ -105,37 +105,23 @@ int sc_aov_write(const char *path, const sc_aov *aov, sc_error *err)
     snprintf(header, sizeof header, AOV_MAGIC " %d %d camera=%s channels=%s\n", aov->width,
              aov->height, cam, list);
 
-    char tmp[1024];
-    snprintf(tmp, sizeof tmp, "%s.tmp.XXXXXX", path);
-    int fd = mkstemp(tmp);
-    if (fd < 0)
-        return sc_fail(err, path, 0, "cannot create a file in its folder");
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        close(fd);
-        unlink(tmp);
-        return sc_fail(err, path, 0, "cannot open for writing");
-    }
-    int ok = fputs(header, f) >= 0;
+    sc_out_file out;
+    if (sc_out_open(&out, path, err))
+        return SC_FAIL;
+    int ok = fputs(header, out.f) >= 0;
     size_t npix = (size_t)aov->width * (size_t)aov->height;
     unsigned char *buf = sc_alloc(npix * 3, 4);
     for (int c = 0; c < nch && ok; c++) {
         size_t count = npix * (size_t)known_channels[c].components;
         put_le32(buf, channel_data(aov, c), count);
-        ok = fwrite(buf, 4, count, f) == count;
+        ok = fwrite(buf, 4, count, out.f) == count;
     }
     free(buf);
-    if (fclose(f) != 0)
-        ok = 0;
     if (!ok) {
-        unlink(tmp);
+        sc_out_abandon(&out);
         return sc_fail(err, path, 0, "writing the AOV file failed (disk full?)");
     }
-    if (rename(tmp, path) != 0) {
-        unlink(tmp);
-        return sc_fail(err, path, 0, "cannot rename the finished AOV file into place");
-    }
-    return SC_OK;
+    return sc_out_commit(&out, err);
 }
 
 /* One "name:TYPE[xN]" item of the channel list. */

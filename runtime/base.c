@@ -2,11 +2,14 @@
 #define _POSIX_C_SOURCE 200809L
 #include "sc_base.h"
 
+#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 int sc_vfail(sc_error *err, const char *file, int line, const char *fmt, va_list ap)
 {
@@ -114,4 +117,70 @@ double sc_now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int sc_out_open(sc_out_file *out, const char *path, sc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (strlen(path) >= sizeof out->path)
+        return sc_fail(err, path, 0, "output path is too long");
+    snprintf(out->path, sizeof out->path, "%s", path);
+    snprintf(out->tmp, sizeof out->tmp, "%s.tmpXXXXXX", path);
+    int fd = mkstemp(out->tmp);
+    if (fd < 0)
+        return sc_fail(err, path, 0, "cannot create a temporary file beside it: %s",
+                       strerror(errno));
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(fd, 0666 & ~mask);
+    out->f = fdopen(fd, "wb");
+    if (!out->f) {
+        int saved = errno;
+        close(fd);
+        unlink(out->tmp);
+        return sc_fail(err, path, 0, "cannot write: %s", strerror(saved));
+    }
+    return SC_OK;
+}
+
+int sc_out_close(sc_out_file *out, sc_error *err)
+{
+    int failed = ferror(out->f);
+    int saved = errno;
+    if (fclose(out->f) != 0 && !failed) {
+        failed = 1;
+        saved = errno;
+    }
+    out->f = NULL;
+    if (failed) {
+        unlink(out->tmp);
+        return sc_fail(err, out->path, 0, "writing failed: %s", strerror(saved));
+    }
+    return SC_OK;
+}
+
+int sc_out_rename(sc_out_file *out, sc_error *err)
+{
+    if (rename(out->tmp, out->path) != 0) {
+        int saved = errno;
+        unlink(out->tmp);
+        return sc_fail(err, out->path, 0, "cannot move the finished file into place: %s",
+                       strerror(saved));
+    }
+    return SC_OK;
+}
+
+int sc_out_commit(sc_out_file *out, sc_error *err)
+{
+    if (sc_out_close(out, err))
+        return SC_FAIL;
+    return sc_out_rename(out, err);
+}
+
+void sc_out_abandon(sc_out_file *out)
+{
+    if (out->f)
+        fclose(out->f);
+    out->f = NULL;
+    unlink(out->tmp);
 }

@@ -24,24 +24,6 @@ void sc_image_free(sc_image *img)
     memset(img, 0, sizeof *img);
 }
 
-/* Opens "path.tmp.XXXXXX" beside path; the name goes to tmp_path. */
-static FILE *open_temp_beside(const char *path, char *tmp_path, size_t size, sc_error *err)
-{
-    snprintf(tmp_path, size, "%s.tmp.XXXXXX", path);
-    int fd = mkstemp(tmp_path);
-    if (fd < 0) {
-        sc_fail(err, path, 0, "cannot create a file in its folder");
-        return NULL;
-    }
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        close(fd);
-        unlink(tmp_path);
-        sc_fail(err, path, 0, "cannot open for writing");
-    }
-    return f;
-}
-
 /* Encodes img into an open file; libpng reports errors by longjmp. */
 static int write_png_stream(FILE *f, const sc_image *img)
 {
@@ -73,22 +55,14 @@ int sc_png_write(const char *path, const sc_image *img, sc_error *err)
     if (img->width <= 0 || img->height <= 0 || (img->channels != 3 && img->channels != 4))
         return sc_fail(err, path, 0, "cannot write a %dx%d image with %d channels", img->width,
                        img->height, img->channels);
-    char tmp[1024];
-    FILE *f = open_temp_beside(path, tmp, sizeof tmp, err);
-    if (!f)
+    sc_out_file out;
+    if (sc_out_open(&out, path, err))
         return SC_FAIL;
-    int status = write_png_stream(f, img);
-    if (fclose(f) != 0)
-        status = SC_FAIL;
-    if (status != SC_OK) {
-        unlink(tmp);
+    if (write_png_stream(out.f, img) != SC_OK) {
+        sc_out_abandon(&out);
         return sc_fail(err, path, 0, "writing the PNG failed (disk full?)");
     }
-    if (rename(tmp, path) != 0) {
-        unlink(tmp);
-        return sc_fail(err, path, 0, "cannot rename the finished PNG into place");
-    }
-    return SC_OK;
+    return sc_out_commit(&out, err);
 }
 
 int sc_png_read(const char *path, sc_image *img, sc_error *err)

@@ -5,6 +5,7 @@
 #define SC_BASE_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <stdarg.h>
 
 /* Status codes returned by library functions. */
@@ -58,6 +59,24 @@ void sc_log(sc_log_level level, const char *fmt, ...)
  * continues with a NULL it did not expect. Sizes are checked for overflow. */
 void *sc_alloc(size_t count, size_t size);          /* zeroed */
 void *sc_realloc(void *ptr, size_t count, size_t size);
+
+/* Output files that never appear half-written: sc_out_open writes to a
+ * temporary file beside `path`, with the permissions a plain fopen would
+ * give (not mkstemp's private ones). sc_out_commit closes it, checks that
+ * every write succeeded and renames it into place. Several files that must
+ * appear together are closed first (sc_out_close) and renamed afterwards
+ * (sc_out_rename). Any failure removes the temporary file;
+ * sc_out_abandon removes it on purpose. */
+typedef struct sc_out_file {
+    FILE *f;
+    char path[1024];
+    char tmp[1040];
+} sc_out_file;
+int sc_out_open(sc_out_file *out, const char *path, sc_error *err);
+int sc_out_close(sc_out_file *out, sc_error *err);
+int sc_out_rename(sc_out_file *out, sc_error *err);
+int sc_out_commit(sc_out_file *out, sc_error *err);
+void sc_out_abandon(sc_out_file *out);
 
 /* Monotonic clock in seconds, for progress and benchmark output. */
 double sc_now(void);

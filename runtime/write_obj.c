@@ -147,42 +147,6 @@ static int colour_index(float (*colours)[3], int *ncolours, const float c[3])
     return (*ncolours)++;
 }
 
-static FILE *open_temporary(const char *path, char *tmp, size_t size, sc_error *err)
-{
-    snprintf(tmp, size, "%s.tmpXXXXXX", path);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        sc_fail(err, path, 0, "cannot create a temporary file beside it: %s", strerror(errno));
-        return NULL;
-    }
-    /* mkstemp makes the file private; give it the permissions a plain
-     * fopen would. */
-    mode_t mask = umask(0);
-    umask(mask);
-    fchmod(fd, 0666 & ~mask);
-    FILE *f = fdopen(fd, "w");
-    if (!f) {
-        sc_fail(err, path, 0, "cannot write: %s", strerror(errno));
-        close(fd);
-        unlink(tmp);
-    }
-    return f;
-}
-
-/* Closes f and reports any write error on it. */
-static int finish_file(FILE *f, const char *path, sc_error *err)
-{
-    int failed = ferror(f);
-    int saved = errno;
-    if (fclose(f) != 0 && !failed) {
-        failed = 1;
-        saved = errno;
-    }
-    if (failed)
-        return sc_fail(err, path, 0, "write failed: %s", strerror(saved));
-    return SC_OK;
-}
-
 static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
 int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err)
@@ -203,26 +167,23 @@ int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err)
     for (int i = 0; i < scene->nsurfaces; i++)
         material[i] = colour_index(colours, &ncolours, scene->surfaces[i].color);
 
-    char obj_tmp[1100], mtl_tmp[1100];
+    /* The .obj names the .mtl: both are finished before either appears. */
     int status = SC_FAIL;
-    FILE *mtl = open_temporary(mtl_path, mtl_tmp, sizeof mtl_tmp, err);
-    if (!mtl)
+    sc_out_file mtl, obj;
+    if (sc_out_open(&mtl, mtl_path, err))
         goto done;
-    fprintf(mtl, "# materials of %s: one per distinct surface colour\n",
+    fprintf(mtl.f, "# materials of %s: one per distinct surface colour\n",
             strrchr(path, '/') ? strrchr(path, '/') + 1 : path);
     for (int i = 0; i < ncolours; i++)
-        fprintf(mtl, "newmtl color%d\nKd %.9g %.9g %.9g\n", i, colours[i][0], colours[i][1],
+        fprintf(mtl.f, "newmtl color%d\nKd %.9g %.9g %.9g\n", i, colours[i][0], colours[i][1],
                 colours[i][2]);
-    if (finish_file(mtl, mtl_path, err)) {
-        unlink(mtl_tmp);
+    if (sc_out_close(&mtl, err))
+        goto done;
+    if (sc_out_open(&obj, path, err)) {
+        sc_out_abandon(&mtl);
         goto done;
     }
-    FILE *f = open_temporary(path, obj_tmp, sizeof obj_tmp, err);
-    if (!f) {
-        unlink(mtl_tmp);
-        goto done;
-    }
-    fprintf(f, "# splinecast scene: %d free-form surfaces (rational B-spline form, clamped "
+    fprintf(obj.f, "# splinecast scene: %d free-form surfaces (rational B-spline form, clamped "
             "knots)\nmtllib %s\n", scene->nsurfaces, mtl_base);
     obj_counts counts = {0, 0, 0};
     for (int i = 0; i < scene->nsurfaces; i++) {
@@ -232,25 +193,19 @@ int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err)
          * identity so that untransformed data stays bit-exact. */
         if (memcmp(world.xform, identity, sizeof identity))
             sc_surface_bake_xform(&world);
-        write_surface(f, &world, i, material[i], &counts);
+        write_surface(obj.f, &world, i, material[i], &counts);
         sc_surface_free(&world);
     }
-    if (finish_file(f, path, err)) {
-        unlink(obj_tmp);
-        unlink(mtl_tmp);
+    if (sc_out_close(&obj, err)) {
+        sc_out_abandon(&mtl);
         goto done;
     }
-    if (rename(mtl_tmp, mtl_path) != 0) {
-        sc_fail(err, mtl_path, 0, "cannot rename the temporary file: %s", strerror(errno));
-        unlink(obj_tmp);
-        unlink(mtl_tmp);
+    if (sc_out_rename(&mtl, err)) {
+        sc_out_abandon(&obj);
         goto done;
     }
-    if (rename(obj_tmp, path) != 0) {
-        sc_fail(err, path, 0, "cannot rename the temporary file: %s", strerror(errno));
-        unlink(obj_tmp);
+    if (sc_out_rename(&obj, err))
         goto done;
-    }
     status = SC_OK;
 done:
     free(colours);

@@ -1,6 +1,7 @@
 /* test_cli.c — the command line as a whole: the top-level help, unknown
  * commands, and the variant keys `info` lists for a scene. */
 #include <stdlib.h>
+#include <sys/stat.h>
 
 #include "test.h"
 
@@ -49,4 +50,23 @@ TEST(cli_info_keys_are_distinct_surface_kinds)
     CHECK(nwant >= 3);
     CHECK_INT(nkeys, nwant);
     free(out);
+}
+
+/* Outputs are written to a temporary file and renamed; they must still get
+ * the permissions of a plain fopen (0666 less the umask), not mkstemp's
+ * private 0600. */
+TEST(cli_outputs_have_plain_permissions)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "(umask 022 && %s ref teapot -o %s/perm.png --size 16x16 && "
+             "%s convert teapot -o %s/perm.obj)", test_cli, test_tmpdir(), test_cli, test_tmpdir());
+    CHECK_INT(test_run(cmd, NULL, NULL), 0);
+    const char *names[] = {"perm.png", "perm.aov", "perm.obj", "perm.mtl"};
+    for (int i = 0; i < 4; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", test_tmpdir(), names[i]);
+        struct stat st;
+        CHECK_INT(stat(path, &st), 0);
+        CHECK_INT(st.st_mode & 0777, 0644);
+    }
 }

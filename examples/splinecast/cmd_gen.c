@@ -228,18 +228,14 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
  * file. */
 static int write_file(const char *path, const char *text, size_t size, sc_error *err)
 {
-    char tmp[1100];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
-        return sc_fail(err, path, 0, "cannot write: %s", strerror(errno));
-    int ok = fwrite(text, 1, size, f) == size;
-    ok &= fclose(f) == 0;
-    if (!ok || rename(tmp, path) != 0) {
-        remove(tmp);
-        return sc_fail(err, path, 0, "cannot write: %s", strerror(errno));
+    sc_out_file out;
+    if (sc_out_open(&out, path, err))
+        return SC_FAIL;
+    if (fwrite(text, 1, size, out.f) != size) {
+        sc_out_abandon(&out);
+        return sc_fail(err, path, 0, "writing failed (disk full?)");
     }
-    return SC_OK;
+    return sc_out_commit(&out, err);
 }
 
 /* Creates dir and any missing parents, as mkdir -p. */
