@@ -2,7 +2,10 @@
  * one straight-line IR sequence for exactly the degrees asked for (every
  * de Casteljau / de Boor blend and every basis product spelled out); the
  * generic form writes runtime loops over degrees read from the record, with
- * local arrays, for degrees too high to unroll profitably. */
+ * local arrays, for degrees too high to unroll profitably. As everywhere in
+ * the compiler, an argument list holds at most one call that creates
+ * instructions, so that the program does not depend on the order in which
+ * the C compiler evaluates arguments. */
 #include "kernels.h"
 
 void scg_dir_bezier(scg_builder *b, int degree, scg_value t, scg_dir *d)
@@ -27,10 +30,13 @@ void scg_dir_nurbs(scg_builder *b, int degree, scg_value t, const scg_value *kno
      * knots[m] = τ_{k-p+1+m} that is (t - knots[j-1]) / (knots[p+j-r] -
      * knots[j-1]). The denominators span at least the non-empty span k. */
     for (int r = 1; r <= p; r++)
-        for (int j = r; j <= p; j++)
-            d->alpha[r][j] = scg_div(b, scg_sub(b, t, knots[j - 1]),
-                                     scg_sub(b, knots[p + j - r], knots[j - 1]));
-    d->scale = scg_div(b, scg_const_f(b, (float)p), scg_sub(b, knots[p], knots[p - 1]));
+        for (int j = r; j <= p; j++) {
+            scg_value from_left = scg_sub(b, t, knots[j - 1]);
+            scg_value width = scg_sub(b, knots[p + j - r], knots[j - 1]);
+            d->alpha[r][j] = scg_div(b, from_left, width);
+        }
+    scg_value degree_f = scg_const_f(b, (float)p);
+    d->scale = scg_div(b, degree_f, scg_sub(b, knots[p], knots[p - 1]));
 }
 
 /* Runs blend levels 1 … upto of the triangle on d[0 … p] in place. */
@@ -86,8 +92,11 @@ static void bernstein(scg_builder *b, const scg_dir *d, scg_value *basis, scg_va
             deriv[p] = scg_mul(b, prev[p - 1], d->scale);
         }
         cur[0] = scg_mul(b, d->one_minus_t, prev[0]);
-        for (int i = 1; i < k; i++)
-            cur[i] = scg_add(b, scg_mul(b, d->one_minus_t, prev[i]), scg_mul(b, d->t, prev[i - 1]));
+        for (int i = 1; i < k; i++) {
+            scg_value stays = scg_mul(b, d->one_minus_t, prev[i]);
+            scg_value moves = scg_mul(b, d->t, prev[i - 1]);
+            cur[i] = scg_add(b, stays, moves);
+        }
         cur[k] = scg_mul(b, d->t, prev[k - 1]);
         for (int i = 0; i <= k; i++)
             prev[i] = cur[i];
@@ -141,7 +150,8 @@ scg_value scg_span_search(scg_builder *b, scg_value t, scg_value knot_offset, sc
     scg_if(b, scg_le(b, scg_sub(b, h, l), one));
     scg_break(b);
     scg_endif(b);
-    scg_value mid = scg_div(b, scg_add(b, l, h), scg_const_i(b, 2));
+    scg_value sum = scg_add(b, l, h);
+    scg_value mid = scg_div(b, sum, scg_const_i(b, 2));
     scg_value knot = scg_fetch(b, SCG_TEX_KNOTS, scg_add(b, knot_offset, mid));
     scg_value below = scg_lt(b, t, knot);
     scg_store(b, hi, scg_select(b, below, mid, h));
@@ -197,8 +207,10 @@ static void generic_basis(scg_builder *b, const generic_dir *d, scg_value nvar, 
         {
             scg_value r1 = scg_add(b, r, one_i), jr = scg_sub(b, j, r);
             scg_value right_r1 = scg_load_at(b, right, r1), left_jr = scg_load_at(b, left, jr);
-            scg_value temp = scg_div(b, scg_load_at(b, nvar, r), scg_add(b, right_r1, left_jr));
-            scg_store_at(b, nvar, r, scg_add(b, scg_load(b, saved), scg_mul(b, right_r1, temp)));
+            scg_value n_r = scg_load_at(b, nvar, r);
+            scg_value temp = scg_div(b, n_r, scg_add(b, right_r1, left_jr));
+            scg_value carried = scg_load(b, saved);
+            scg_store_at(b, nvar, r, scg_add(b, carried, scg_mul(b, right_r1, temp)));
             scg_store(b, saved, scg_mul(b, left_jr, temp));
         }
         scg_endloop(b);
@@ -213,21 +225,32 @@ static void generic_basis(scg_builder *b, const generic_dir *d, scg_value nvar, 
     {
         scg_value has_left = scg_lt(b, scg_const_i(b, 0), rr);
         scg_value has_right = scg_lt(b, rr, d->degree);
-        scg_value lo_left = scg_load_at(b, lower, scg_max(b, scg_sub(b, rr, one_i), scg_const_i(b, 0)));
+        scg_value rr_before = scg_sub(b, rr, one_i);
+        scg_value lo_left = scg_load_at(b, lower, scg_max(b, rr_before, scg_const_i(b, 0)));
         scg_value lo_right = scg_load_at(b, lower, scg_min(b, rr, scg_sub(b, d->degree, one_i)));
         scg_value den_left = one, den_right = one;
         if (d->nurbs) {
             scg_value base = scg_sub(b, d->span, d->degree);
-            den_left = scg_sub(b, knot_at(b, d, scg_add(b, d->span, rr)),
-                               knot_at(b, d, scg_add(b, base, rr)));
-            den_right = scg_sub(b, knot_at(b, d, scg_add(b, scg_add(b, d->span, rr), one_i)),
-                                knot_at(b, d, scg_add(b, scg_add(b, base, rr), one_i)));
+            scg_value left_end = knot_at(b, d, scg_add(b, d->span, rr));
+            scg_value left_start = knot_at(b, d, scg_add(b, base, rr));
+            den_left = scg_sub(b, left_end, left_start);
+            scg_value right_end = knot_at(b, d, scg_add(b, scg_add(b, d->span, rr), one_i));
+            scg_value right_start = knot_at(b, d, scg_add(b, scg_add(b, base, rr), one_i));
+            den_right = scg_sub(b, right_end, right_start);
         }
         scg_value term_left = scg_select(b, has_left, scg_div(b, lo_left, den_left), zero);
         scg_value term_right = scg_select(b, has_right, scg_div(b, lo_right, den_right), zero);
         scg_store_at(b, dvar, rr, scg_mul(b, pf, scg_sub(b, term_left, term_right)));
     }
     scg_endloop(b);
+}
+
+/* sum_var += x · weight. */
+static void accumulate(scg_builder *b, scg_value sum_var, scg_value x, scg_value weight)
+{
+    scg_value sum = scg_load(b, sum_var);
+    scg_value term = scg_mul(b, x, weight);
+    scg_store(b, sum_var, scg_add(b, sum, term));
 }
 
 void scg_eval_generic(scg_builder *b, const scg_generic_patch *patch, scg_value t_u,
@@ -252,9 +275,10 @@ void scg_eval_generic(scg_builder *b, const scg_generic_patch *patch, scg_value 
     scg_value sv = scg_var(b, SCG_VEC4, 0, zero4);
     scg_value one_i = scg_const_i(b, 1);
     /* First control point of the patch's span block, then row by row. */
-    scg_value first = scg_add(b, patch->cp_offset,
-                              scg_add(b, scg_mul(b, scg_sub(b, dv.span, patch->deg_v), patch->nu),
-                                      scg_sub(b, du.span, patch->deg_u)));
+    scg_value first_row = scg_sub(b, dv.span, patch->deg_v);
+    scg_value first_col = scg_sub(b, du.span, patch->deg_u);
+    scg_value block = scg_add(b, scg_mul(b, first_row, patch->nu), first_col);
+    scg_value first = scg_add(b, patch->cp_offset, block);
     scg_value j = scg_loop(b, scg_add(b, patch->deg_v, one_i));
     {
         scg_value row = scg_add(b, first, scg_mul(b, j, patch->nu));
@@ -263,17 +287,15 @@ void scg_eval_generic(scg_builder *b, const scg_generic_patch *patch, scg_value 
         scg_value i = scg_loop(b, scg_add(b, patch->deg_u, one_i));
         {
             scg_value pt = scg_fetch(b, SCG_TEX_POINTS, scg_add(b, row, i));
-            scg_store(b, row_sum, scg_add(b, scg_load(b, row_sum),
-                                          scg_mul(b, pt, scg_load_at(b, nu_var, i))));
-            scg_store(b, row_du, scg_add(b, scg_load(b, row_du),
-                                         scg_mul(b, pt, scg_load_at(b, du_var, i))));
+            accumulate(b, row_sum, pt, scg_load_at(b, nu_var, i));
+            accumulate(b, row_du, pt, scg_load_at(b, du_var, i));
         }
         scg_endloop(b);
         scg_value bv = scg_load_at(b, nv_var, j), dbv = scg_load_at(b, dv_var, j);
         scg_value rs = scg_load(b, row_sum), rd = scg_load(b, row_du);
-        scg_store(b, s, scg_add(b, scg_load(b, s), scg_mul(b, rs, bv)));
-        scg_store(b, su, scg_add(b, scg_load(b, su), scg_mul(b, rd, bv)));
-        scg_store(b, sv, scg_add(b, scg_load(b, sv), scg_mul(b, rs, dbv)));
+        accumulate(b, s, rs, bv);
+        accumulate(b, su, rd, bv);
+        accumulate(b, sv, rs, dbv);
     }
     scg_endloop(b);
     scg_name(b, "S");

@@ -258,7 +258,7 @@ TEST(ir_dump_bicubic_straight_line)
     fclose(f);
     CHECK_CONTAINS(text, "# program bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
     CHECK_CONTAINS(text, "= fetch sc_points, ");
-    CHECK_CONTAINS(text, "_Su:vec2 = ");
+    CHECK_CONTAINS(text, "_Su:vec3 = ");
     CHECK_CONTAINS(text, "output hit = ");
     free(text);
     scg_program_free(p);

@@ -32,30 +32,30 @@ layout(binding = 2) uniform samplerBuffer sc_records;
 // Colour attachments, by location (docs/emitter.md).
 layout(location = 0) out vec4 sc_colour;
 
-// The intersection, printed from the optimised IR (543 instructions):
+// The intersection, printed from the optimised IR (554 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
-    float v7 = abs(sc_ray_dir.x);
-    float v8 = abs(sc_ray_dir.z);
-    bool v9 = v8 < v7;
-    float v10 = -sc_ray_dir.z;
-    vec3 v11 = vec3(0.0, v10, sc_ray_dir.y);
-    float v12 = -sc_ray_dir.y;
-    vec3 v13 = vec3(v12, sc_ray_dir.x, 0.0);
-    vec3 v14 = v9 ? v13 : v11;
+    float v7 = abs(sc_ray_dir.z);
+    float v8 = abs(sc_ray_dir.x);
+    bool v9 = v7 < v8;
+    float v10 = -sc_ray_dir.y;
+    vec3 v11 = vec3(v10, sc_ray_dir.x, 0.0);
+    float v12 = -sc_ray_dir.z;
+    vec3 v13 = vec3(0.0, v12, sc_ray_dir.y);
+    vec3 v14 = v9 ? v11 : v13;
     float v15 = length(sc_ray_dir);
-    float n1_16 = length(v14);
-    vec3 n1_17 = v14 / n1_16;
-    vec3 n2_18 = cross(sc_ray_dir, n1_17);
-    vec3 n2_19 = n2_18 / v15;
-    float d1_20 = dot(n1_17, sc_ray_origin);
+    vec3 axis_16 = sc_ray_dir / v15;
+    float n1_17 = length(v14);
+    vec3 n1_18 = v14 / n1_17;
+    vec3 n2_19 = cross(axis_16, n1_18);
+    float d1_20 = dot(n1_18, sc_ray_origin);
     float d1_21 = -d1_20;
     float d2_22 = dot(n2_19, sc_ray_origin);
     float d2_23 = -d2_22;
-    float tol_25 = sc_footprint * v15;
-    float tol_27 = 0.25 * tol_25;
-    float tol_29 = tol_27 * 0.1;
+    float tol_26 = sc_footprint * v15;
+    float tol_27 = 0.25 * tol_26;
+    float tol_29 = tol_27 * 0.3;
     int record_32 = sc_record * 4;
     vec4 record_33 = texelFetch(sc_records, record_32);
     int record_35 = record_32 + 1;
@@ -69,468 +69,480 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     int v49 = int(record_36.w);
     vec2 v53 = vec2(sc_domain.x, sc_domain.z);
     vec2 v56 = vec2(sc_domain.y, sc_domain.w);
-    vec2 v57 = v56 - v53;
-    vec2 v58 = v57 * 0.1;
-    vec2 uv_lo_60 = v53 - v58;
-    vec2 uv_lo_61 = max(uv_lo_60, vec2(-1.0e-05));
-    vec2 uv_hi_63 = v56 + v58;
-    vec2 uv_hi_64 = min(uv_hi_63, vec2(1.00001));
-    vec2 uv0_66 = v53 + v56;
-    vec2 uv0_67 = uv0_66 * 0.5;
-    vec2 uv_69 = uv0_67;
-    int iters_70 = 0;
-    bool done_72 = false;
+    vec2 v58 = v56 - v53;
+    vec2 v59 = v58 * 0.1;
+    vec2 uv_lo_60 = v53 - v59;
+    vec2 uv_lo_62 = max(uv_lo_60, vec2(-1.0e-05));
+    vec2 uv_hi_63 = v56 + v59;
+    vec2 uv_hi_65 = min(uv_hi_63, vec2(1.00001));
+    vec2 uv0_67 = v53 + v56;
+    vec2 uv0_68 = uv0_67 * 0.5;
+    vec2 uv_70 = uv0_68;
+    int iters_71 = 0;
+    bool done_73 = false;
 
-    for (int v73 = 0; v73 < 4; v73++) {
-        bool v74 = done_72;
+    for (int v74 = 0; v74 < 4; v74++) {
+        bool v75 = done_73;
 
-        if (v74) {
+        if (v75) {
             break;
         }
-        vec2 uv_78 = uv_69;
-        float v81[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        vec2 uv_79 = uv_70;
         float v82[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         float v83[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         float v84[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        float v86[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        float v85[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         float v87[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         float v88[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        v81[0] = 1.0;
+        float v89[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        v82[0] = 1.0;
 
-        for (int v90 = 0; v90 < v47; v90++) {
-            int v91 = v90 + 1;
-            bool v92 = v91 == v47;
+        for (int v91 = 0; v91 < v47; v91++) {
+            int v92 = v91 + 1;
+            bool v93 = v92 == v47;
 
-            if (v92) {
-                for (int v94 = 0; v94 < v47; v94++) {
-                    float v95 = v81[v94];
-                    v88[v94] = v95;
+            if (v93) {
+                for (int v95 = 0; v95 < v47; v95++) {
+                    float v96 = v82[v95];
+                    v89[v95] = v96;
                 }
             }
-            v86[v91] = uv_78.x;
-            float v100 = 1.0 - uv_78.x;
-            v87[v91] = v100;
-            float v102 = 0.0;
+            v87[v92] = uv_79.x;
+            float v101 = 1.0 - uv_79.x;
+            v88[v92] = v101;
+            float v103 = 0.0;
 
-            for (int v103 = 0; v103 < v91; v103++) {
-                int v104 = v103 + 1;
-                int v105 = v91 - v103;
-                float v106 = v87[v104];
-                float v107 = v86[v105];
-                float v108 = v106 + v107;
-                float v109 = v81[v103];
-                float v110 = v109 / v108;
-                float v111 = v106 * v110;
-                float v112 = v102;
-                float v113 = v112 + v111;
-                v81[v103] = v113;
-                float v115 = v107 * v110;
-                v102 = v115;
+            for (int v104 = 0; v104 < v92; v104++) {
+                int v105 = v104 + 1;
+                int v106 = v92 - v104;
+                float v107 = v88[v105];
+                float v108 = v87[v106];
+                float v109 = v82[v104];
+                float v110 = v107 + v108;
+                float v111 = v109 / v110;
+                float v112 = v103;
+                float v113 = v107 * v111;
+                float v114 = v112 + v113;
+                v82[v104] = v114;
+                float v116 = v108 * v111;
+                v103 = v116;
             }
-            float v118 = v102;
-            v81[v91] = v118;
+            float v119 = v103;
+            v82[v92] = v119;
         }
-        float v121 = float(v47);
-        int v122 = v47 + 1;
+        float v122 = float(v47);
+        int v123 = v47 + 1;
 
-        for (int v123 = 0; v123 < v122; v123++) {
-            bool v124 = 0 < v123;
-            bool v125 = v123 < v47;
-            int v126 = v123 - 1;
-            int v127 = max(v126, 0);
-            float v128 = v88[v127];
-            int v129 = v47 - 1;
-            int v130 = min(v123, v129);
-            float v131 = v88[v130];
-            float v132 = v124 ? v128 : 0.0;
-            float v133 = v125 ? v131 : 0.0;
-            float v134 = v132 - v133;
-            float v135 = v121 * v134;
-            v82[v123] = v135;
+        for (int v124 = 0; v124 < v123; v124++) {
+            bool v125 = 0 < v124;
+            bool v126 = v124 < v47;
+            int v127 = v124 - 1;
+            int v128 = max(v127, 0);
+            float v129 = v89[v128];
+            int v130 = v47 - 1;
+            int v131 = min(v124, v130);
+            float v132 = v89[v131];
+            float v133 = v125 ? v129 : 0.0;
+            float v134 = v126 ? v132 : 0.0;
+            float v135 = v133 - v134;
+            float v136 = v122 * v135;
+            v83[v124] = v136;
         }
-        float v138[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         float v139[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         float v140[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        v83[0] = 1.0;
+        float v141[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        v84[0] = 1.0;
 
-        for (int v142 = 0; v142 < v49; v142++) {
-            int v143 = v142 + 1;
-            bool v144 = v143 == v49;
+        for (int v143 = 0; v143 < v49; v143++) {
+            int v144 = v143 + 1;
+            bool v145 = v144 == v49;
 
-            if (v144) {
-                for (int v146 = 0; v146 < v49; v146++) {
-                    float v147 = v83[v146];
-                    v140[v146] = v147;
+            if (v145) {
+                for (int v147 = 0; v147 < v49; v147++) {
+                    float v148 = v84[v147];
+                    v141[v147] = v148;
                 }
             }
-            v138[v143] = uv_78.y;
-            float v152 = 1.0 - uv_78.y;
-            v139[v143] = v152;
-            float v154 = 0.0;
+            v139[v144] = uv_79.y;
+            float v153 = 1.0 - uv_79.y;
+            v140[v144] = v153;
+            float v155 = 0.0;
 
-            for (int v155 = 0; v155 < v143; v155++) {
-                int v156 = v155 + 1;
-                int v157 = v143 - v155;
-                float v158 = v139[v156];
-                float v159 = v138[v157];
-                float v160 = v158 + v159;
-                float v161 = v83[v155];
-                float v162 = v161 / v160;
-                float v163 = v158 * v162;
-                float v164 = v154;
-                float v165 = v164 + v163;
-                v83[v155] = v165;
-                float v167 = v159 * v162;
-                v154 = v167;
+            for (int v156 = 0; v156 < v144; v156++) {
+                int v157 = v156 + 1;
+                int v158 = v144 - v156;
+                float v159 = v140[v157];
+                float v160 = v139[v158];
+                float v161 = v84[v156];
+                float v162 = v159 + v160;
+                float v163 = v161 / v162;
+                float v164 = v155;
+                float v165 = v159 * v163;
+                float v166 = v164 + v165;
+                v84[v156] = v166;
+                float v168 = v160 * v163;
+                v155 = v168;
             }
-            float v170 = v154;
-            v83[v143] = v170;
+            float v171 = v155;
+            v84[v144] = v171;
         }
-        float v173 = float(v49);
-        int v174 = v49 + 1;
+        float v174 = float(v49);
+        int v175 = v49 + 1;
 
-        for (int v175 = 0; v175 < v174; v175++) {
-            bool v176 = 0 < v175;
-            bool v177 = v175 < v49;
-            int v178 = v175 - 1;
-            int v179 = max(v178, 0);
-            float v180 = v140[v179];
-            int v181 = v49 - 1;
-            int v182 = min(v175, v181);
-            float v183 = v140[v182];
-            float v184 = v176 ? v180 : 0.0;
-            float v185 = v177 ? v183 : 0.0;
-            float v186 = v184 - v185;
-            float v187 = v173 * v186;
-            v84[v175] = v187;
+        for (int v176 = 0; v176 < v175; v176++) {
+            bool v177 = 0 < v176;
+            bool v178 = v176 < v49;
+            int v179 = v176 - 1;
+            int v180 = max(v179, 0);
+            float v181 = v141[v180];
+            int v182 = v49 - 1;
+            int v183 = min(v176, v182);
+            float v184 = v141[v183];
+            float v185 = v177 ? v181 : 0.0;
+            float v186 = v178 ? v184 : 0.0;
+            float v187 = v185 - v186;
+            float v188 = v174 * v187;
+            v85[v176] = v188;
         }
-        vec4 v191 = vec4(0.0);
         vec4 v192 = vec4(0.0);
         vec4 v193 = vec4(0.0);
-        int v194 = v47 - v47;
+        vec4 v194 = vec4(0.0);
         int v195 = v49 - v49;
-        int v196 = v195 * v45;
-        int v197 = v196 + v194;
-        int v198 = cp_offset_41 + v197;
+        int v196 = v47 - v47;
+        int v197 = v195 * v45;
+        int v198 = v197 + v196;
+        int v199 = cp_offset_41 + v198;
 
-        for (int v199 = 0; v199 < v174; v199++) {
-            int v200 = v199 * v45;
-            int v201 = v198 + v200;
-            vec4 v202 = vec4(0.0);
+        for (int v200 = 0; v200 < v175; v200++) {
+            int v201 = v200 * v45;
+            int v202 = v199 + v201;
             vec4 v203 = vec4(0.0);
+            vec4 v204 = vec4(0.0);
 
-            for (int v204 = 0; v204 < v122; v204++) {
-                int v205 = v201 + v204;
-                vec4 v206 = texelFetch(sc_points, v205);
-                float v207 = v81[v204];
-                vec4 v208 = v206 * v207;
-                vec4 v209 = v202;
-                vec4 v210 = v209 + v208;
-                v202 = v210;
-                float v212 = v82[v204];
-                vec4 v213 = v206 * v212;
-                vec4 v214 = v203;
-                vec4 v215 = v214 + v213;
-                v203 = v215;
+            for (int v205 = 0; v205 < v123; v205++) {
+                int v206 = v202 + v205;
+                vec4 v207 = texelFetch(sc_points, v206);
+                float v208 = v82[v205];
+                vec4 v209 = v203;
+                vec4 v210 = v207 * v208;
+                vec4 v211 = v209 + v210;
+                v203 = v211;
+                float v213 = v83[v205];
+                vec4 v214 = v204;
+                vec4 v215 = v207 * v213;
+                vec4 v216 = v214 + v215;
+                v204 = v216;
             }
-            float v218 = v83[v199];
-            float v219 = v84[v199];
-            vec4 v220 = v202;
+            float v219 = v84[v200];
+            float v220 = v85[v200];
             vec4 v221 = v203;
-            vec4 v222 = v220 * v218;
-            vec4 v223 = v191;
-            vec4 v224 = v223 + v222;
-            v191 = v224;
-            vec4 v226 = v221 * v218;
-            vec4 v227 = v192;
-            vec4 v228 = v227 + v226;
-            v192 = v228;
-            vec4 v230 = v220 * v219;
-            vec4 v231 = v193;
-            vec4 v232 = v231 + v230;
-            v193 = v232;
+            vec4 v222 = v204;
+            vec4 v223 = v192;
+            vec4 v224 = v221 * v219;
+            vec4 v225 = v223 + v224;
+            v192 = v225;
+            vec4 v227 = v193;
+            vec4 v228 = v222 * v219;
+            vec4 v229 = v227 + v228;
+            v193 = v229;
+            vec4 v231 = v194;
+            vec4 v232 = v221 * v220;
+            vec4 v233 = v231 + v232;
+            v194 = v233;
         }
-        vec4 S_235 = v191;
-        vec4 Su_236 = v192;
-        vec4 Sv_237 = v193;
-        vec3 v241 = vec3(S_235.x, S_235.y, S_235.z);
-        vec3 v245 = vec3(Su_236.x, Su_236.y, Su_236.z);
-        vec3 v249 = vec3(Sv_237.x, Sv_237.y, Sv_237.z);
-        float F_250 = dot(n2_19, v241);
-        float F_251 = F_250 + d2_23;
-        float F_252 = dot(n1_17, v241);
-        float F_253 = F_252 + d1_21;
-        vec2 F_254 = vec2(F_253, F_251);
-        float Fu_255 = dot(n2_19, v245);
-        float Fu_256 = dot(n1_17, v245);
-        vec2 Fu_257 = vec2(Fu_256, Fu_255);
-        float Fv_258 = dot(n2_19, v249);
-        float Fv_259 = dot(n1_17, v249);
-        vec2 Fv_260 = vec2(Fv_259, Fv_258);
-        float converged_261 = length(F_254);
-        bool converged_262 = converged_261 < tol_29;
-        float det_263 = Fv_259 * Fu_255;
-        float det_264 = Fu_256 * Fv_258;
-        float det_265 = det_264 - det_263;
-        float singular_266 = length(Fv_260);
-        float singular_267 = length(Fu_257);
-        float singular_268 = singular_267 * singular_266;
-        float singular_270 = 1.0e-06 * singular_268;
-        float singular_271 = abs(det_265);
-        bool singular_272 = singular_271 <= singular_270;
-        float step_273 = Fu_255 * F_253;
-        float step_274 = Fu_256 * F_251;
-        float step_275 = step_274 - step_273;
-        float step_276 = Fv_259 * F_251;
-        float step_277 = Fv_258 * F_253;
-        float step_278 = step_277 - step_276;
-        vec2 step_279 = vec2(step_278, step_275);
+        vec4 S_236 = v192;
+        vec4 Su_237 = v193;
+        vec4 Sv_238 = v194;
+        vec3 v242 = vec3(S_236.x, S_236.y, S_236.z);
+        vec3 v246 = vec3(Su_237.x, Su_237.y, Su_237.z);
+        vec3 v250 = vec3(Sv_238.x, Sv_238.y, Sv_238.z);
+        float F_251 = dot(n1_18, v242);
+        float F_252 = F_251 + d1_21;
+        float F_253 = dot(n2_19, v242);
+        float F_254 = F_253 + d2_23;
+        float Fu_255 = dot(n1_18, v246);
+        float Fu_256 = dot(n2_19, v246);
+        float Fu_257 = dot(axis_16, v246);
+        vec3 Fu_258 = vec3(Fu_255, Fu_256, Fu_257);
+        float Fv_259 = dot(n1_18, v250);
+        float Fv_260 = dot(n2_19, v250);
+        float Fv_261 = dot(axis_16, v250);
+        vec3 Fv_262 = vec3(Fv_259, Fv_260, Fv_261);
+        float det_263 = Fu_255 * Fv_260;
+        float det_264 = Fv_259 * Fu_256;
+        float det_265 = det_263 - det_264;
+        float singular_266 = abs(det_265);
+        float singular_267 = length(Fu_258);
+        float singular_268 = length(Fv_262);
+        float singular_270 = singular_267 * singular_268;
+        float singular_271 = 1.0e-06 * singular_270;
+        bool singular_272 = singular_266 <= singular_271;
+        float step_273 = Fv_260 * F_252;
+        float step_274 = Fv_259 * F_254;
+        float step_275 = step_273 - step_274;
+        float step_276 = Fu_255 * F_254;
+        float step_277 = Fu_256 * F_252;
+        float step_278 = step_276 - step_277;
+        vec2 step_279 = vec2(step_275, step_278);
         vec2 step_280 = step_279 / det_265;
-        vec2 uv_next_281 = uv_78 - step_280;
-        bool stop_282 = converged_262 || singular_272;
-        vec2 v283 = stop_282 ? uv_78 : uv_next_281;
-        uv_69 = v283;
-        int v285 = stop_282 ? 0 : 1;
-        int v286 = iters_70;
-        int v287 = v286 + v285;
-        iters_70 = v287;
-        bool v292 = uv_next_281.y <= uv_hi_64.y;
-        bool v294 = uv_lo_61.y <= uv_next_281.y;
-        bool v295 = v294 && v292;
-        bool v297 = uv_next_281.x <= uv_hi_64.x;
-        bool v299 = uv_lo_61.x <= uv_next_281.x;
-        bool v300 = v299 && v297;
-        bool v301 = v300 && v295;
-        bool v302 = !v301;
-        bool v303 = stop_282 || v302;
-        done_72 = v303;
+        vec3 moved_281 = Fu_258 * step_275;
+        vec3 moved_282 = Fv_262 * step_278;
+        vec3 moved_283 = moved_281 + moved_282;
+        vec3 moved_284 = moved_283 / det_265;
+        float converged_285 = length(moved_284);
+        bool converged_286 = converged_285 < tol_29;
+        vec2 uv_next_287 = uv_79 - step_280;
+        vec2 v288 = singular_272 ? uv_79 : uv_next_287;
+        uv_70 = v288;
+        int v290 = iters_71;
+        int v291 = singular_272 ? 0 : 1;
+        int v292 = v290 + v291;
+        iters_71 = v292;
+        bool stop_294 = converged_286 || singular_272;
+        bool v296 = uv_lo_62.x <= uv_79.x;
+        bool v298 = uv_79.x <= uv_hi_65.x;
+        bool v300 = uv_lo_62.y <= uv_79.y;
+        bool v302 = uv_79.y <= uv_hi_65.y;
+        bool v303 = v296 && v298;
+        bool v304 = v300 && v302;
+        bool v305 = v303 && v304;
+        bool v308 = uv_lo_62.x <= uv_next_287.x;
+        bool v309 = uv_next_287.x <= uv_hi_65.x;
+        bool v310 = uv_lo_62.y <= uv_next_287.y;
+        bool v311 = uv_next_287.y <= uv_hi_65.y;
+        bool v312 = v308 && v309;
+        bool v313 = v310 && v311;
+        bool v314 = v312 && v313;
+        bool v315 = v305 || v314;
+        bool v316 = !v315;
+        bool v317 = stop_294 || v316;
+        done_73 = v317;
     }
-    vec2 uv_final_306 = uv_69;
-    float v309[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v310[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v311[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v312[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v314[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v315[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v316[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    v309[0] = 1.0;
+    vec2 uv_final_320 = uv_70;
+    float v323[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v324[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v325[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v326[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v328[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v329[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v330[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    v323[0] = 1.0;
 
-    for (int v318 = 0; v318 < v47; v318++) {
-        int v319 = v318 + 1;
-        bool v320 = v319 == v47;
+    for (int v332 = 0; v332 < v47; v332++) {
+        int v333 = v332 + 1;
+        bool v334 = v333 == v47;
 
-        if (v320) {
-            for (int v322 = 0; v322 < v47; v322++) {
-                float v323 = v309[v322];
-                v316[v322] = v323;
+        if (v334) {
+            for (int v336 = 0; v336 < v47; v336++) {
+                float v337 = v323[v336];
+                v330[v336] = v337;
             }
         }
-        v314[v319] = uv_final_306.x;
-        float v328 = 1.0 - uv_final_306.x;
-        v315[v319] = v328;
-        float v330 = 0.0;
+        v328[v333] = uv_final_320.x;
+        float v342 = 1.0 - uv_final_320.x;
+        v329[v333] = v342;
+        float v344 = 0.0;
 
-        for (int v331 = 0; v331 < v319; v331++) {
-            int v332 = v331 + 1;
-            int v333 = v319 - v331;
-            float v334 = v315[v332];
-            float v335 = v314[v333];
-            float v336 = v334 + v335;
-            float v337 = v309[v331];
-            float v338 = v337 / v336;
-            float v339 = v334 * v338;
-            float v340 = v330;
-            float v341 = v340 + v339;
-            v309[v331] = v341;
-            float v343 = v335 * v338;
-            v330 = v343;
+        for (int v345 = 0; v345 < v333; v345++) {
+            int v346 = v345 + 1;
+            int v347 = v333 - v345;
+            float v348 = v329[v346];
+            float v349 = v328[v347];
+            float v350 = v323[v345];
+            float v351 = v348 + v349;
+            float v352 = v350 / v351;
+            float v353 = v344;
+            float v354 = v348 * v352;
+            float v355 = v353 + v354;
+            v323[v345] = v355;
+            float v357 = v349 * v352;
+            v344 = v357;
         }
-        float v346 = v330;
-        v309[v319] = v346;
+        float v360 = v344;
+        v323[v333] = v360;
     }
-    float v349 = float(v47);
-    int v350 = v47 + 1;
+    float v363 = float(v47);
+    int v364 = v47 + 1;
 
-    for (int v351 = 0; v351 < v350; v351++) {
-        bool v352 = 0 < v351;
-        bool v353 = v351 < v47;
-        int v354 = v351 - 1;
-        int v355 = max(v354, 0);
-        float v356 = v316[v355];
-        int v357 = v47 - 1;
-        int v358 = min(v351, v357);
-        float v359 = v316[v358];
-        float v360 = v352 ? v356 : 0.0;
-        float v361 = v353 ? v359 : 0.0;
-        float v362 = v360 - v361;
-        float v363 = v349 * v362;
-        v310[v351] = v363;
+    for (int v365 = 0; v365 < v364; v365++) {
+        bool v366 = 0 < v365;
+        bool v367 = v365 < v47;
+        int v368 = v365 - 1;
+        int v369 = max(v368, 0);
+        float v370 = v330[v369];
+        int v371 = v47 - 1;
+        int v372 = min(v365, v371);
+        float v373 = v330[v372];
+        float v374 = v366 ? v370 : 0.0;
+        float v375 = v367 ? v373 : 0.0;
+        float v376 = v374 - v375;
+        float v377 = v363 * v376;
+        v324[v365] = v377;
     }
-    float v366[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v367[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    float v368[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    v311[0] = 1.0;
+    float v380[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v381[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    float v382[17] = float[17](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    v325[0] = 1.0;
 
-    for (int v370 = 0; v370 < v49; v370++) {
-        int v371 = v370 + 1;
-        bool v372 = v371 == v49;
+    for (int v384 = 0; v384 < v49; v384++) {
+        int v385 = v384 + 1;
+        bool v386 = v385 == v49;
 
-        if (v372) {
-            for (int v374 = 0; v374 < v49; v374++) {
-                float v375 = v311[v374];
-                v368[v374] = v375;
+        if (v386) {
+            for (int v388 = 0; v388 < v49; v388++) {
+                float v389 = v325[v388];
+                v382[v388] = v389;
             }
         }
-        v366[v371] = uv_final_306.y;
-        float v380 = 1.0 - uv_final_306.y;
-        v367[v371] = v380;
-        float v382 = 0.0;
+        v380[v385] = uv_final_320.y;
+        float v394 = 1.0 - uv_final_320.y;
+        v381[v385] = v394;
+        float v396 = 0.0;
 
-        for (int v383 = 0; v383 < v371; v383++) {
-            int v384 = v383 + 1;
-            int v385 = v371 - v383;
-            float v386 = v367[v384];
-            float v387 = v366[v385];
-            float v388 = v386 + v387;
-            float v389 = v311[v383];
-            float v390 = v389 / v388;
-            float v391 = v386 * v390;
-            float v392 = v382;
-            float v393 = v392 + v391;
-            v311[v383] = v393;
-            float v395 = v387 * v390;
-            v382 = v395;
+        for (int v397 = 0; v397 < v385; v397++) {
+            int v398 = v397 + 1;
+            int v399 = v385 - v397;
+            float v400 = v381[v398];
+            float v401 = v380[v399];
+            float v402 = v325[v397];
+            float v403 = v400 + v401;
+            float v404 = v402 / v403;
+            float v405 = v396;
+            float v406 = v400 * v404;
+            float v407 = v405 + v406;
+            v325[v397] = v407;
+            float v409 = v401 * v404;
+            v396 = v409;
         }
-        float v398 = v382;
-        v311[v371] = v398;
+        float v412 = v396;
+        v325[v385] = v412;
     }
-    float v401 = float(v49);
-    int v402 = v49 + 1;
+    float v415 = float(v49);
+    int v416 = v49 + 1;
 
-    for (int v403 = 0; v403 < v402; v403++) {
-        bool v404 = 0 < v403;
-        bool v405 = v403 < v49;
-        int v406 = v403 - 1;
-        int v407 = max(v406, 0);
-        float v408 = v368[v407];
-        int v409 = v49 - 1;
-        int v410 = min(v403, v409);
-        float v411 = v368[v410];
-        float v412 = v404 ? v408 : 0.0;
-        float v413 = v405 ? v411 : 0.0;
-        float v414 = v412 - v413;
-        float v415 = v401 * v414;
-        v312[v403] = v415;
+    for (int v417 = 0; v417 < v416; v417++) {
+        bool v418 = 0 < v417;
+        bool v419 = v417 < v49;
+        int v420 = v417 - 1;
+        int v421 = max(v420, 0);
+        float v422 = v382[v421];
+        int v423 = v49 - 1;
+        int v424 = min(v417, v423);
+        float v425 = v382[v424];
+        float v426 = v418 ? v422 : 0.0;
+        float v427 = v419 ? v425 : 0.0;
+        float v428 = v426 - v427;
+        float v429 = v415 * v428;
+        v326[v417] = v429;
     }
-    vec4 v419 = vec4(0.0);
-    vec4 v420 = vec4(0.0);
-    vec4 v421 = vec4(0.0);
-    int v422 = v47 - v47;
-    int v423 = v49 - v49;
-    int v424 = v423 * v45;
-    int v425 = v424 + v422;
-    int v426 = cp_offset_41 + v425;
+    vec4 v433 = vec4(0.0);
+    vec4 v434 = vec4(0.0);
+    vec4 v435 = vec4(0.0);
+    int v436 = v49 - v49;
+    int v437 = v47 - v47;
+    int v438 = v436 * v45;
+    int v439 = v438 + v437;
+    int v440 = cp_offset_41 + v439;
 
-    for (int v427 = 0; v427 < v402; v427++) {
-        int v428 = v427 * v45;
-        int v429 = v426 + v428;
-        vec4 v430 = vec4(0.0);
-        vec4 v431 = vec4(0.0);
+    for (int v441 = 0; v441 < v416; v441++) {
+        int v442 = v441 * v45;
+        int v443 = v440 + v442;
+        vec4 v444 = vec4(0.0);
+        vec4 v445 = vec4(0.0);
 
-        for (int v432 = 0; v432 < v350; v432++) {
-            int v433 = v429 + v432;
-            vec4 v434 = texelFetch(sc_points, v433);
-            float v435 = v309[v432];
-            vec4 v436 = v434 * v435;
-            vec4 v437 = v430;
-            vec4 v438 = v437 + v436;
-            v430 = v438;
-            float v440 = v310[v432];
-            vec4 v441 = v434 * v440;
-            vec4 v442 = v431;
-            vec4 v443 = v442 + v441;
-            v431 = v443;
+        for (int v446 = 0; v446 < v364; v446++) {
+            int v447 = v443 + v446;
+            vec4 v448 = texelFetch(sc_points, v447);
+            float v449 = v323[v446];
+            vec4 v450 = v444;
+            vec4 v451 = v448 * v449;
+            vec4 v452 = v450 + v451;
+            v444 = v452;
+            float v454 = v324[v446];
+            vec4 v455 = v445;
+            vec4 v456 = v448 * v454;
+            vec4 v457 = v455 + v456;
+            v445 = v457;
         }
-        float v446 = v311[v427];
-        float v447 = v312[v427];
-        vec4 v448 = v430;
-        vec4 v449 = v431;
-        vec4 v450 = v448 * v446;
-        vec4 v451 = v419;
-        vec4 v452 = v451 + v450;
-        v419 = v452;
-        vec4 v454 = v449 * v446;
-        vec4 v455 = v420;
-        vec4 v456 = v455 + v454;
-        v420 = v456;
-        vec4 v458 = v448 * v447;
-        vec4 v459 = v421;
-        vec4 v460 = v459 + v458;
-        v421 = v460;
+        float v460 = v325[v441];
+        float v461 = v326[v441];
+        vec4 v462 = v444;
+        vec4 v463 = v445;
+        vec4 v464 = v433;
+        vec4 v465 = v462 * v460;
+        vec4 v466 = v464 + v465;
+        v433 = v466;
+        vec4 v468 = v434;
+        vec4 v469 = v463 * v460;
+        vec4 v470 = v468 + v469;
+        v434 = v470;
+        vec4 v472 = v435;
+        vec4 v473 = v462 * v461;
+        vec4 v474 = v472 + v473;
+        v435 = v474;
     }
-    vec4 S_463 = v419;
-    vec4 Su_464 = v420;
-    vec4 Sv_465 = v421;
-    vec3 point_469 = vec3(S_463.x, S_463.y, S_463.z);
-    vec3 v473 = vec3(Su_464.x, Su_464.y, Su_464.z);
-    vec3 v477 = vec3(Sv_465.x, Sv_465.y, Sv_465.z);
-    float miss_478 = dot(n2_19, point_469);
-    float miss_479 = miss_478 + d2_23;
-    float miss_480 = dot(n1_17, point_469);
-    float miss_481 = miss_480 + d1_21;
-    float t_482 = dot(sc_ray_dir, sc_ray_dir);
-    vec3 t_483 = point_469 - sc_ray_origin;
-    float t_484 = dot(t_483, sc_ray_dir);
-    float t_485 = t_484 / t_482;
-    float t_486 = dot(n1_17, v473);
-    float t_487 = dot(n2_19, v473);
-    float t_488 = dot(n1_17, v477);
-    float t_489 = dot(n2_19, v477);
-    float det_490 = t_488 * t_487;
-    float det_491 = t_486 * t_489;
-    float det_492 = det_491 - det_490;
-    float error_493 = t_488 * miss_479;
-    float error_494 = t_489 * miss_481;
-    float error_495 = error_494 - error_493;
-    float error_496 = error_495 / det_492;
-    float error_497 = t_487 * miss_481;
-    float error_498 = t_486 * miss_479;
-    float error_499 = error_498 - error_497;
-    float error_500 = error_499 / det_492;
-    vec3 error_501 = v477 * error_500;
-    vec3 error_502 = v473 * error_496;
-    vec3 error_503 = error_502 + error_501;
-    float hit_504 = length(error_503);
-    bool hit_505 = hit_504 < tol_27;
-    bool hit_507 = uv_final_306.y <= uv_hi_64.y;
-    bool hit_509 = uv_lo_61.y <= uv_final_306.y;
-    bool hit_510 = hit_509 && hit_507;
-    bool hit_512 = uv_final_306.x <= uv_hi_64.x;
-    bool hit_514 = uv_lo_61.x <= uv_final_306.x;
-    bool hit_515 = hit_514 && hit_512;
-    bool hit_516 = hit_515 && hit_510;
-    bool hit_517 = hit_505 && hit_516;
-    bool hit_518 = 0.0 < t_485;
-    bool hit_519 = hit_517 && hit_518;
-    vec3 normal_520 = cross(v473, v477);
-    float normal_521 = length(normal_520);
-    vec3 normal_522 = sc_ray_dir / v15;
-    vec3 normal_523 = -normal_522;
-    vec3 normal_524 = normal_520 / normal_521;
-    bool normal_525 = 0.0 < normal_521;
-    vec3 normal_526 = normal_525 ? normal_524 : normal_523;
-    vec2 uv_surface_529 = vec2(record_39.x, record_39.z);
-    vec2 uv_surface_532 = vec2(record_39.y, record_39.w);
-    vec2 uv_surface_533 = uv_surface_532 - uv_surface_529;
-    vec2 uv_surface_534 = uv_final_306 * uv_surface_533;
-    vec2 uv_surface_535 = uv_surface_529 + uv_surface_534;
-    hit = hit_519;
-    uv = uv_surface_535;
-    t = t_485;
-    point = point_469;
-    normal = normal_526;
-    int v541 = iters_70;
-    iters = v541;
+    vec4 S_477 = v433;
+    vec4 Su_478 = v434;
+    vec4 Sv_479 = v435;
+    vec3 point_483 = vec3(S_477.x, S_477.y, S_477.z);
+    vec3 v487 = vec3(Su_478.x, Su_478.y, Su_478.z);
+    vec3 v491 = vec3(Sv_479.x, Sv_479.y, Sv_479.z);
+    float miss_492 = dot(n1_18, point_483);
+    float miss_493 = miss_492 + d1_21;
+    float miss_494 = dot(n2_19, point_483);
+    float miss_495 = miss_494 + d2_23;
+    vec3 t_496 = point_483 - sc_ray_origin;
+    float t_497 = dot(t_496, sc_ray_dir);
+    float t_498 = dot(sc_ray_dir, sc_ray_dir);
+    float t_499 = t_497 / t_498;
+    float J_500 = dot(n1_18, v487);
+    float J_501 = dot(n2_19, v487);
+    float J_502 = dot(n1_18, v491);
+    float J_503 = dot(n2_19, v491);
+    float det_504 = J_500 * J_503;
+    float det_505 = J_502 * J_501;
+    float det_506 = det_504 - det_505;
+    float error_507 = J_503 * miss_493;
+    float error_508 = J_502 * miss_495;
+    float error_509 = error_507 - error_508;
+    float error_510 = error_509 / det_506;
+    float error_511 = J_500 * miss_495;
+    float error_512 = J_501 * miss_493;
+    float error_513 = error_511 - error_512;
+    float error_514 = error_513 / det_506;
+    vec3 error_515 = v487 * error_510;
+    vec3 error_516 = v491 * error_514;
+    vec3 error_517 = error_515 + error_516;
+    float hit_518 = length(error_517);
+    bool hit_519 = hit_518 < tol_27;
+    bool hit_521 = (-1.0e-05) <= uv_final_320.x;
+    bool hit_523 = uv_final_320.x <= 1.00001;
+    bool hit_524 = (-1.0e-05) <= uv_final_320.y;
+    bool hit_525 = uv_final_320.y <= 1.00001;
+    bool hit_526 = hit_521 && hit_523;
+    bool hit_527 = hit_524 && hit_525;
+    bool hit_528 = hit_526 && hit_527;
+    bool hit_529 = hit_519 && hit_528;
+    bool hit_530 = 0.0 < t_499;
+    bool hit_531 = hit_529 && hit_530;
+    vec3 normal_532 = cross(v487, v491);
+    float normal_533 = length(normal_532);
+    bool normal_534 = 0.0 < normal_533;
+    vec3 normal_535 = normal_532 / normal_533;
+    vec3 normal_536 = -axis_16;
+    vec3 normal_537 = normal_534 ? normal_535 : normal_536;
+    vec2 uv_surface_540 = vec2(record_39.x, record_39.z);
+    vec2 uv_surface_543 = vec2(record_39.y, record_39.w);
+    vec2 uv_surface_544 = uv_surface_543 - uv_surface_540;
+    vec2 uv_surface_545 = uv_final_320 * uv_surface_544;
+    vec2 uv_surface_546 = uv_surface_540 + uv_surface_545;
+    hit = hit_531;
+    uv = uv_surface_546;
+    t = t_499;
+    point = point_483;
+    normal = normal_537;
+    int v552 = iters_71;
+    iters = v552;
     surface = v43;
 }
 
