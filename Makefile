@@ -38,7 +38,7 @@ LIB  = $(BUILD)/libsplinecast.a
 CLI  = $(BUILD)/splinecast
 TESTS = $(BUILD)/run_tests
 
-.PHONY: all deps demo test asan clean
+.PHONY: all deps demo test asan clean install uninstall
 all: $(CLI) $(TESTS)
 
 deps:
@@ -108,7 +108,7 @@ demo: deps
 
 test: deps
 	@$(MAKE) --no-print-directory all
-	@SC_CLI=$(CLI) LP_NUM_THREADS=2 $(TESTS) $(T)
+	@SC_CLI=$(CLI) SC_BUILD=$(BUILD) LP_NUM_THREADS=2 $(TESTS) $(T)
 
 # Mesa and LLVM leak on their own: their reports are suppressed by name.
 asan:
@@ -141,3 +141,30 @@ shaders: $(CLI)
 # Regenerates the golden GLSL files of tests/golden/ after an intended change.
 bless: $(CLI)
 	@sh tests/bless.sh $(CLI)
+
+# The generated GLSL must not depend on the C compiler that built splinecast
+# (docs/compiler.md): a clang build must reproduce the goldens of a gcc build.
+.PHONY: check-clang
+check-clang:
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)-clang CC=clang test T=emit_golden_files
+
+# Installation (docs/api.md): the static library, the public header, the
+# command line and a pkg-config file. The .pc is written straight into the
+# staging tree so that it always carries this PREFIX; its Libs name every
+# library libsplinecast.a needs, since the archive is static and Debian's
+# glslang.pc does not link.
+PREFIX  ?= /usr/local
+DESTDIR ?=
+SPLINECAST_VERSION = $(shell sed -n 's/^\#define SPLINECAST_VERSION "\(.*\)"/\1/p' runtime/splinecast.h)
+install: $(LIB) $(CLI)
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/bin
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libsplinecast.a
+	install -m 644 runtime/splinecast.h $(DESTDIR)$(PREFIX)/include/splinecast.h
+	install -m 755 $(CLI) $(DESTDIR)$(PREFIX)/bin/splinecast
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(SPLINECAST_VERSION)|' \
+	    -e 's|@LIBS@|$(LIBS)|' runtime/splinecast.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/splinecast.pc.tmp
+	mv $(DESTDIR)$(PREFIX)/lib/pkgconfig/splinecast.pc.tmp $(DESTDIR)$(PREFIX)/lib/pkgconfig/splinecast.pc
+
+uninstall:
+	rm -f $(DESTDIR)$(PREFIX)/lib/libsplinecast.a $(DESTDIR)$(PREFIX)/include/splinecast.h \
+	  $(DESTDIR)$(PREFIX)/bin/splinecast $(DESTDIR)$(PREFIX)/lib/pkgconfig/splinecast.pc

@@ -8,18 +8,9 @@
 #include <stdio.h>
 #include <stdarg.h>
 
-/* Status codes returned by library functions. */
-enum { SC_OK = 0, SC_FAIL = -1 };
-
-/* Filled by a failing library call. `file`/`line` name the input position
- * (a scene file and its line) when the failure is about input; `key` names
- * the variant key when it is about a generated program. */
-typedef struct sc_error {
-    char message[512];
-    char file[256];
-    int line;
-    char key[128];
-} sc_error;
+/* SC_OK / SC_FAIL, the error record sc_error, sc_error_text and the logger
+ * are part of the public interface: defined once, there. */
+#include "splinecast.h"
 
 /* Record a failure in `err` (which may be NULL) and return SC_FAIL.
  * `file` may be NULL and `line` 0 when there is no input position. The
@@ -34,24 +25,7 @@ int sc_vfail(sc_error *err, const char *file, int line, const char *fmt, va_list
 int sc_fail_key(sc_error *err, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
-/* "file:line: message" (or just the message) into buf. */
-const char *sc_error_text(const sc_error *err, char *buf, size_t size);
-
-/* Log levels, lowest first. */
-typedef enum sc_log_level {
-    SC_LOG_DEBUG = 0,
-    SC_LOG_INFO,
-    SC_LOG_WARN,
-    SC_LOG_ERROR
-} sc_log_level;
-
-typedef void (*sc_logger_fn)(sc_log_level level, const char *message, void *user);
-
-/* The library's single logger. Default: warnings and errors to stderr,
- * prefixed "splinecast: warning: " etc. Passing NULL restores the default. */
-void sc_set_logger(sc_logger_fn fn, void *user);
-/* Messages below `level` are dropped by the default logger (default WARN). */
-void sc_set_log_level(sc_log_level level);
+/* Emits a message through the logger (sc_set_logger). */
 void sc_log(sc_log_level level, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 

@@ -1,0 +1,388 @@
+/* splinecast.h — the public interface of libsplinecast, the only header a
+ * program that links the installed library needs. It ray casts trimmed NURBS
+ * surfaces on the GPU with GLSL generated for each variant key.
+ *
+ * The style is sokol_gfx's: objects are typed handles (small structs holding
+ * an id; id 0 is never valid, and a destroyed object's id stays invalid),
+ * every object is made from a desc struct in which zero means default,
+ * there is one logger, and every call that can fail returns SC_OK or SC_FAIL
+ * and fills an sc_error. Public functions read verb first (sc_make_scene,
+ * sc_query_frame_info, sc_destroy_renderer).
+ *
+ * Three uses (docs/api.md shows each):
+ *   build-time generation   sc_make_scene → sc_query_scene_keys →
+ *                           sc_generate_glsl (validated GLSL, audit figures)
+ *   runtime specialization  sc_make_context → sc_make_program (generated,
+ *                           validated, compiled and cached on first use)
+ *   rendering and accuracy  sc_make_renderer → sc_render → sc_save_png /
+ *                           sc_save_aov; sc_render_reference (CPU, double
+ *                           precision) → sc_compare_frames
+ *
+ * Calls are made from one thread: GL contexts belong to the thread that made
+ * them, and the handle pools are not locked. */
+#ifndef SPLINECAST_H
+#define SPLINECAST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SPLINECAST_VERSION "1.0.0"
+
+/* ---- status, errors, logging ---------------------------------------- */
+
+/* Status codes returned by library functions. */
+enum { SC_OK = 0, SC_FAIL = -1 };
+
+/* Filled by a failing call. `file`/`line` name the input position (a scene
+ * file and its line) when the failure is about input; `key` names the
+ * variant key when it is about a generated program. */
+typedef struct sc_error {
+    char message[512];
+    char file[256];
+    int line;
+    char key[128];
+} sc_error;
+
+/* "file:line: message", "key KEY: message" or just the message, into buf. */
+const char *sc_error_text(const sc_error *err, char *buf, size_t size);
+
+/* Log levels, lowest first. */
+typedef enum sc_log_level {
+    SC_LOG_DEBUG = 0,
+    SC_LOG_INFO,
+    SC_LOG_WARN,
+    SC_LOG_ERROR
+} sc_log_level;
+
+typedef void (*sc_logger_fn)(sc_log_level level, const char *message, void *user);
+
+/* The library's single logger. The default writes warnings and errors to
+ * stderr, prefixed "splinecast: warning: " etc.; a logger set here gets
+ * every message, whatever its level. NULL restores the default. */
+void sc_set_logger(sc_logger_fn fn, void *user);
+/* Messages below `level` are dropped by the default logger (default WARN). */
+void sc_set_log_level(sc_log_level level);
+
+/* ---- handles ---------------------------------------------------------- */
+
+typedef struct sc_scene_id { uint32_t id; } sc_scene_id;       /* a loaded scene */
+typedef struct sc_context_id { uint32_t id; } sc_context_id;   /* an offscreen GL context */
+typedef struct sc_program_id { uint32_t id; } sc_program_id;   /* a GL program of one key */
+typedef struct sc_renderer_id { uint32_t id; } sc_renderer_id; /* a scene prepared for a context */
+typedef struct sc_frame_id { uint32_t id; } sc_frame_id;       /* an image and its AOVs, in memory */
+
+/* Destroys every object still alive and frees the pools; the library can be
+ * used again afterwards. */
+void sc_shutdown(void);
+
+/* ---- scenes ------------------------------------------------------------ */
+
+/* Zero means default: the embedded 32-patch teapot. */
+typedef struct sc_scene_desc {
+    const char *path;      /* .bpt, .obj (free-form) or .igs/.iges, by extension;
+                              "teapot": the embedded teapot */
+    const char *text;      /* instead of path: the file's bytes in memory */
+    size_t size;           /* bytes of text */
+    const char *name;      /* with text: names it in messages; its extension
+                              picks the reader */
+} sc_scene_desc;
+
+int sc_make_scene(const sc_scene_desc *desc, sc_scene_id *out, sc_error *err);
+/* A renderer that uses the scene keeps its data alive until it is destroyed. */
+void sc_destroy_scene(sc_scene_id scene);
+
+typedef struct sc_scene_info {
+    int surfaces;
+    int rational_surfaces;   /* weights not all equal */
+    int trimmed_surfaces;
+    int max_degree;          /* highest surface degree in either direction */
+    int skipped;             /* entities the reader did not turn into geometry */
+    double lo[3], hi[3];     /* world-space bounding box of the control points */
+} sc_scene_info;
+
+int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);
+
+/* ---- variant keys and build-time generation ---------------------------- */
+
+/* A variant key in its canonical text form (docs/variant-key.md), e.g.
+ * "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade". */
+#define SC_KEY_SIZE 128
+typedef struct sc_key { char text[SC_KEY_SIZE]; } sc_key;
+
+typedef enum sc_start {
+    SC_START_DEFAULT = 0,  /* sc_keys_desc: mid; sc_renderer_desc: cpmap */
+    SC_START_MID,          /* Newton starts at the middle of the sub-patch */
+    SC_START_CPMAP         /* at the control-point parameters interpolated
+                              over the hull */
+} sc_start;
+
+typedef enum sc_trim_method {
+    SC_TRIM_DEFAULT = 0,   /* fast */
+    SC_TRIM_FAST,          /* slabs in v, binary search over the pieces */
+    SC_TRIM_CLIP,          /* every piece, two-sided Bézier clipping */
+    SC_TRIM_LEFT           /* every piece, left-only Bézier clipping */
+} sc_trim_method;
+
+/* Outputs of a generated program (bits). */
+enum {
+    SC_OUTPUT_SHADE = 1 << 0,  /* shaded colour */
+    SC_OUTPUT_AOV = 1 << 1,    /* surface id, (u, v), distance, point, normal */
+    SC_OUTPUT_ITERS = 1 << 2,  /* iteration-count view */
+    SC_OUTPUT_UV = 1 << 3      /* (u, v) view */
+};
+
+/* The options `splinecast gen` and `info` take. Zero means default. */
+typedef struct sc_keys_desc {
+    int nurbs_direct;          /* 1: whole NURBS surfaces with de Boor (nurbs
+                                  keys) instead of extracted Bézier patches */
+    int generic_above;         /* degrees above this use the generic program
+                                  with runtime loops (default 7) */
+    int ignore_trims;          /* 1: trim loops are ignored (trim0) */
+    sc_trim_method trim;
+    int trim_iters;            /* clipping iterations per crossing (16) */
+    int max_iters;             /* Newton iterations (4) */
+    double tolerance_px;       /* Newton tolerance in pixel footprints (0.25) */
+    sc_start start;
+    int ert;                   /* early ray termination in the program: 0 none,
+                                  1 skip a ray behind the nearest hit so far,
+                                  2 also drop a hit behind it */
+    unsigned outputs;          /* SC_OUTPUT_* bits (SC_OUTPUT_SHADE) */
+} sc_keys_desc;
+
+/* The distinct keys the scene needs, sorted. *count is always the number of
+ * keys; at most `capacity` are written to keys (which may be NULL). */
+int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *keys,
+                        int capacity, int *count, sc_error *err);
+
+/* Parses a key and checks that the compiler can build it. */
+int sc_check_key(const char *key, sc_error *err);
+
+/* Figures of one generated stage, as a line of `splinecast audit` shows
+ * them (docs/audit.md). */
+typedef struct sc_shader_audit {
+    long inst;                 /* IR instructions after optimisation (0 for
+                                  the vertex stage) */
+    long spirv_inst;           /* SPIR-V instructions (glslang) */
+    long vec4_regs;            /* estimated peak live registers, vec4 units */
+    long tex;                  /* texture fetches */
+    long bytes;                /* GLSL size */
+    int register_bound;        /* M + 2N for orders M >= N (Pabst et al. 4.2);
+                                  0 when the degrees are not fixed */
+    char line[256];            /* "KEY - FS: N inst, N spirv-inst, …" */
+} sc_shader_audit;
+
+/* Zero means default, except the key, which is required. */
+typedef struct sc_glsl_desc {
+    const char *key;
+    int audit;                 /* 1: also translate to SPIR-V and fill the
+                                  audits (about half as much time again) */
+} sc_glsl_desc;
+
+/* A generated, glslang-validated program. */
+typedef struct sc_glsl {
+    char key[SC_KEY_SIZE];
+    char vertex_name[64];      /* keys that share a vertex program share this */
+    char *vertex, *fragment;   /* GLSL 4.50 core, NUL-terminated */
+    size_t vertex_size, fragment_size;
+    sc_shader_audit vertex_audit, fragment_audit;  /* zero unless desc->audit */
+} sc_glsl;
+
+/* Builds, optimises, emits and validates both stages of a key (no GL
+ * needed). A rejected program fails with the key and the offending line. */
+int sc_generate_glsl(const sc_glsl_desc *desc, sc_glsl *out, sc_error *err);
+void sc_free_glsl(sc_glsl *glsl);
+
+/* ---- GL contexts and runtime specialization ---------------------------- */
+
+typedef enum sc_backend {
+    SC_BACKEND_DEFAULT = 0,    /* EGL, falling back to OSMesa */
+    SC_BACKEND_EGL,            /* EGL; falls back to OSMesa with a warning */
+    SC_BACKEND_OSMESA
+} sc_backend;
+
+typedef struct sc_context_desc {
+    sc_backend backend;
+    int debug;                 /* a debug context: more driver messages */
+} sc_context_desc;
+
+/* An offscreen OpenGL 4.5 core context (EGL or OSMesa, loaded at run time). */
+int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *err);
+/* Also destroys the context's programs and renderers. */
+void sc_destroy_context(sc_context_id ctx);
+
+typedef struct sc_context_info {
+    sc_backend backend;        /* the one actually used: EGL or OSMESA */
+    char description[256];     /* "egl-surfaceless llvmpipe (…)" etc. */
+} sc_context_info;
+
+int sc_query_context_info(sc_context_id ctx, sc_context_info *info, sc_error *err);
+
+/* The GL program of a key: from the context's cache, or generated,
+ * validated, compiled and linked now. Asking again for the same key returns
+ * the same handle. Programs live as long as their context. */
+int sc_make_program(sc_context_id ctx, const char *key, sc_program_id *out, sc_error *err);
+
+typedef struct sc_program_info {
+    char key[SC_KEY_SIZE];
+    uint32_t gl_program;       /* the GL program name, for drawing with it */
+    double generate_ms;        /* building, emitting and validating the GLSL */
+    double compile_ms;         /* compiling and linking in the driver */
+} sc_program_info;
+
+int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error *err);
+
+/* ---- rendering -------------------------------------------------------- */
+
+typedef enum sc_show {
+    SC_SHOW_SHADE = 0,         /* shaded colour (default) */
+    SC_SHOW_UV,                /* (u, v) as colour */
+    SC_SHOW_ITERS,             /* iteration count */
+    SC_SHOW_NORMAL,            /* normal as colour */
+    SC_SHOW_DEPTH              /* distance as grey */
+} sc_show;
+
+typedef enum sc_hull_split {
+    SC_SPLIT_DEFAULT = 0,      /* adaptive */
+    SC_SPLIT_ADAPTIVE,         /* until the control mesh is flat within
+                                  hull_tolerance */
+    SC_SPLIT_UNIFORM           /* hull_divisions × hull_divisions per patch */
+} sc_hull_split;
+
+typedef enum sc_ray_termination {
+    SC_TERMINATION_DEFAULT = 0,
+    SC_TERMINATION_NONE,        /* every hull fragment runs the intersection */
+    SC_TERMINATION_CONSERVATIVE,/* depth written with depth_greater, so that
+                                   a GPU may keep early depth testing */
+    SC_TERMINATION_MANUAL,      /* the intersection is skipped behind the
+                                   nearest hit so far */
+    SC_TERMINATION_MANUAL_BOTH  /* also a hit behind it is dropped before
+                                   trimming and shading */
+} sc_ray_termination;
+
+typedef enum sc_hull_order {
+    SC_HULL_ORDER_DEFAULT = 0,
+    SC_HULL_ORDER_FRONT_TO_BACK,   /* strictly by nearest hull depth */
+    SC_HULL_ORDER_BY_PROGRAM,      /* grouped by program, front to back in one */
+    SC_HULL_ORDER_HYBRID           /* depth buckets, by program in a bucket */
+} sc_hull_order;
+
+/* Zero means default in every field (the defaults of `splinecast render`). */
+typedef struct sc_renderer_desc {
+    sc_hull_split hull_split;
+    int hull_divisions;        /* uniform: sub-patches per side (2) */
+    double hull_tolerance;     /* adaptive: flatness as a fraction of the
+                                  scene's bounding-box diagonal (0.003) */
+    int hull_max_depth;        /* adaptive: most splits of one patch (8) */
+    sc_start start;            /* Newton start (cpmap) */
+    int max_iters;             /* Newton iterations (6) */
+    double tolerance_px;       /* Newton tolerance in pixel footprints (0.05) */
+    sc_show show;
+    int generic;               /* 1: the generic program for every surface */
+    int unroll_max_degree;     /* highest degree drawn unrolled (9) */
+    sc_trim_method trim;
+    int trim_iters;            /* clipping iterations per crossing (16) */
+    sc_ray_termination termination;
+    sc_hull_order order;
+    int batch_hulls;           /* hulls per batch between texture barriers in
+                                  the manual termination modes */
+} sc_renderer_desc;
+
+/* Prepares everything that does not depend on the view: hulls, GPU data
+ * and one program per distinct key. */
+int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
+                     sc_renderer_id *out, sc_error *err);
+void sc_destroy_renderer(sc_renderer_id renderer);
+
+/* The distinct keys the renderer draws with, in order of first use; *count
+ * and capacity as in sc_query_scene_keys. */
+int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, int *count,
+                           sc_error *err);
+
+typedef struct sc_renderer_info {
+    int programs;              /* distinct keys */
+    int hulls, triangles;
+    size_t gpu_bytes;          /* patch data, hulls, colours */
+    double compile_ms;         /* generating, validating, compiling, linking */
+} sc_renderer_info;
+
+int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
+
+/* A pinhole view. Zero means default: eye and target both zero frame the
+ * scene's bounding box, fovy_deg 0 is 30 degrees, width and height 0 are
+ * 512. +z is up unless the view is along z (then +y). */
+typedef struct sc_camera_desc {
+    double eye[3], target[3];
+    double fovy_deg;
+    int width, height;
+    const char *text;          /* "EX,EY,EZ,TX,TY,TZ,FOVY" instead of eye,
+                                  target and fovy_deg */
+} sc_camera_desc;
+
+/* Draws one frame, waits for it and reads it back: the image of the view
+ * and its AOVs, with iteration counts. */
+int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id *out,
+              sc_error *err);
+
+typedef struct sc_reference_desc {
+    int threads;               /* 0: one per online core */
+} sc_reference_desc;
+
+/* The CPU reference of the same view: double-precision object-space
+ * subdivision with exact trimming, independent of starting values. */
+int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
+                        const sc_reference_desc *desc, sc_frame_id *out, sc_error *err);
+
+/* ---- frames ----------------------------------------------------------- */
+
+/* Reads an AOV file (docs/aov-format.md); its colour is a grey shading. */
+int sc_load_frame(const char *aov_path, sc_frame_id *out, sc_error *err);
+void sc_destroy_frame(sc_frame_id frame);
+
+/* Pointers into the frame, valid until it is destroyed. Per pixel, row 0 at
+ * the top, index j * width + i. */
+typedef struct sc_frame_info {
+    int width, height;
+    double eye[3], target[3], fovy_deg;
+    const uint8_t *rgba;       /* 4 per pixel, sRGB */
+    const int32_t *surface;    /* surface index, -1 for a miss */
+    const float *uv;           /* 2 per pixel, in the surface's domain */
+    const float *t;            /* distance from the eye */
+    const float *point;        /* 3 per pixel, world space */
+    const float *normal;       /* 3 per pixel, unit, facing the viewer */
+    const float *iters;        /* iterations; NULL for reference frames */
+    double render_ms;          /* drawing and reading back, or the reference */
+} sc_frame_info;
+
+int sc_query_frame_info(sc_frame_id frame, sc_frame_info *info, sc_error *err);
+
+/* Written to a temporary file and renamed: never half-written. */
+int sc_save_png(sc_frame_id frame, const char *path, sc_error *err);
+int sc_save_aov(sc_frame_id frame, const char *path, sc_error *err);
+
+/* Accuracy of `test` against `reference` (docs/reference.md): pixel counts
+ * and the percentages and errors of `splinecast diff`. */
+typedef struct sc_comparison {
+    long reference_hits, test_hits, both_hit;
+    long holes, false_hits, off;
+    double coverage_pct;       /* (holes + false hits) / reference hits × 100 */
+    double fail_pct;           /* (holes + false hits + off) / reference hits × 100 */
+    double pos_median_px, pos_max_px;
+    double normal_mean_deg, normal_max_deg;
+    int has_iters;
+    double iters_mean, iters_max;
+    char line[256];            /* "accuracy coverage_pct=… fail_pct=… …" */
+} sc_comparison;
+
+/* Fails when the two frames differ in size or camera. */
+int sc_compare_frames(sc_frame_id reference, sc_frame_id test, sc_comparison *out,
+                      sc_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
