@@ -53,7 +53,7 @@ enum { SCG_RECORD_TEXELS = 4 };
  * a block can be placed anywhere. Coordinates are normalised to the
  * surface's domain, [0,1]², so that float precision is the same for every
  * domain. For trim degree N (the key's):
- *   +0: (piece count P, slab count S, parity bias, slab table offset)
+ *   +0: (piece count P, parity bias, grid columns G_u, grid rows G_v)
  *   +1: (scale_u, scale_v, offset_u, offset_v): normalised (u, v) =
  *       surface (u, v) · scale + offset
  *   +2 + k·(N+2): piece k, SCG_TRIM_PIECE_TEXELS(N) texels:
@@ -61,17 +61,25 @@ enum { SCG_RECORD_TEXELS = 4 };
  *       (u·w, v·w, w, _) in order of increasing v; the first point's .w is
  *       u_lo, the u of the end point at v_lo. The piece covers
  *       v_lo <= v < v_hi, its u lies in [u_min, u_max].
- *   slab table (offset in +0 .w), S+1 texels: slab s is
- *       (y_s, item offset, item count, 0) for y_s <= v < y_{s+1}; the last
- *       texel is (y_S, _, 0, 0), the end of the last slab.
- *   items (offsets in the slab texels), one texel each:
- *       (piece offset, u_min, u_max, 0): the pieces spanning the slab,
- *       ordered by u, with the bounds of u over their part in the slab.
+ *   cells, from +2 + P·(N+2), G_u·G_v texels: the cell of column i, row j
+ *       (u·G_u in [i, i+1), v·G_v in [j, j+1); the outer columns and rows
+ *       reach to infinity) is texel j·G_u + i:
+ *       (parity, entry offset, entry count, 0); parity (bias included) is
+ *       that of the crossings with the pieces wholly right of the cell at
+ *       the row's bottom.
+ *   entries, SCG_TRIM_ENTRY_TEXELS each, from the cell's entry offset:
+ *       (v_lo, v_hi, u_min, u_max), (piece offset, 0, 0, 0): a piece that
+ *       may pass through the cell, with the bounds of u over its part in
+ *       the row; or, piece offset 0 and u_min = u_max = FLT_MAX, a run
+ *       v_lo <= v < v_hi where the pieces right of the cell add one
+ *       crossing.
  * A point is kept when the count of pieces crossed by the ray from it
  * towards +u, plus the parity bias, is odd (bias 1 when the surface has
  * only holes, 0 when it has an outer loop). */
-enum { SCG_TRIM_HEADER_TEXELS = 2 };
+enum { SCG_TRIM_HEADER_TEXELS = 2, SCG_TRIM_ENTRY_TEXELS = 2 };
 #define SCG_TRIM_PIECE_TEXELS(degree) ((degree) + 2)
+/* Offsets are floats: a block stays below 2^24 texels. */
+#define SCG_TRIM_MAX_TEXELS (1 << 24)
 
 /* ---- fragment-stage inputs (vertex-stage outputs) ---- */
 typedef enum scg_input_slot {

@@ -46,9 +46,10 @@ typedef enum scg_trim_mode {
     SCG_TRIM_NONE = 0,        /* "trim0": untrimmed */
     SCG_TRIM_CLIP,            /* "clipNiC": every piece, two-sided iterative
                                  Bézier clipping */
-    SCG_TRIM_FAST,            /* "fastNiC": v slabs found by binary search,
-                                 a binary search over the slab's pieces
-                                 ordered in u; two-sided clipping */
+    SCG_TRIM_FAST,            /* "fastNiC": a uniform grid indexed
+                                 directly, a cell's parity and the pieces
+                                 that may pass through it; two-sided
+                                 clipping for the ambiguous ones */
     SCG_TRIM_LEFT             /* "leftNiC": every piece, left-only clipping */
 } scg_trim_mode;
 
@@ -70,7 +71,10 @@ typedef enum scg_ert {
     SCG_ERT_NONE = 0,         /* "ert0" */
     SCG_ERT_BEFORE,           /* "ert1": skip the ray when the hull lies
                                  behind the nearest surface so far */
-    SCG_ERT_BOTH              /* "ert2": also drop a hit behind it */
+    SCG_ERT_BOTH,             /* "ert2": also drop a hit behind it */
+    SCG_ERT_CONSERVATIVE      /* "ert3": gl_FragDepth declared depth_greater
+                                 (the hit never lies in front of the hull),
+                                 so a GPU may keep its early depth test */
 } scg_ert;
 
 /* Output bits; the text lists the set ones in this order, joined by '.'. */

@@ -122,7 +122,7 @@ typedef enum sc_start {
 
 typedef enum sc_trim_method {
     SC_TRIM_DEFAULT = 0,   /* fast */
-    SC_TRIM_FAST,          /* slabs in v, binary search over the pieces */
+    SC_TRIM_FAST,          /* a uniform grid: only the pieces in the pixel's cell */
     SC_TRIM_CLIP,          /* every piece, two-sided Bézier clipping */
     SC_TRIM_LEFT           /* every piece, left-only Bézier clipping */
 } sc_trim_method;

@@ -10,12 +10,21 @@
  *  - u bounds are taken from the float control points, widened by a few
  *    float steps and rounded outwards, so that a verdict from the bounds
  *    agrees with the clipping of the same float curve.
- * Slabs cut the v range at every piece end point; within a slab the pieces
- * span it completely and do not cross, so they are ordered by u at the
- * slab's middle, and each carries the bounds of its part inside the slab,
- * which are much tighter than the piece's. */
+ *
+ * The accelerated method reads a uniform grid over the normalised domain
+ * (the outer rows and columns reach to infinity). A cell is a full-height
+ * slice of its row, so the part of a piece inside the row that does not
+ * touch the cell lies wholly left or wholly right of it: left, it is never
+ * crossed from the cell; right, it is crossed exactly when v is in its
+ * half-open range. Those right pieces are therefore folded into the cell's
+ * parity at the row's bottom plus the v values where that parity flips
+ * (equal flips cancel, so a chain of pieces through the row costs nothing),
+ * and only the pieces that may pass through the cell are listed with their
+ * bounds for the program to test. A cell no curve passes through is decided
+ * by its parity alone. */
 #include "trim_pack.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +39,11 @@
 #define BOUND_MARGIN (1.0 / 2097152.0)
 
 enum { MAX_POINTS = SCG_MAX_DEGREE + 1 };
+
+/* Grid size: square, about GRID_CELLS_PER_PIECE cells a piece, a power of
+ * two up to MAX_GRID_SIDE a side. More cells, or more rows than columns,
+ * measured no faster on llvmpipe (docs/trimming.md) and cost memory. */
+enum { GRID_CELLS_PER_PIECE = 4, MAX_GRID_SIDE = 256 };
 
 int sc_surface_trim_degree(const sc_surface *s)
 {
@@ -86,81 +100,62 @@ static void piece_points(const packed_piece *pc, int n, double *cp)
         cp[i] = pc->cp[i];
 }
 
-/* De Casteljau at t: the point (homogeneous) and, when wanted, the control
- * points of [0, t] and [t, 1]. */
-static void split_at(const double *cp, int n, double t, double *point, double *left, double *right)
+/* De Casteljau at 1/2: the control points of both halves. */
+static void halve(const double *cp, int n, double *left, double *right)
 {
     double work[3 * MAX_POINTS];
     memcpy(work, cp, sizeof(double) * 3 * (size_t)(n + 1));
     for (int c = 0; c < 3; c++) {
-        if (left)
-            left[c] = work[c];
-        if (right)
-            right[3 * n + c] = work[3 * n + c];
+        left[c] = work[c];
+        right[3 * n + c] = work[3 * n + c];
     }
     for (int r = 1; r <= n; r++) {
         for (int i = 0; i <= n - r; i++)
             for (int c = 0; c < 3; c++)
-                work[3 * i + c] = (1.0 - t) * work[3 * i + c] + t * work[3 * (i + 1) + c];
+                work[3 * i + c] = 0.5 * (work[3 * i + c] + work[3 * (i + 1) + c]);
         for (int c = 0; c < 3; c++) {
-            if (left)
-                left[3 * r + c] = work[c];
-            if (right)
-                right[3 * (n - r) + c] = work[3 * (n - r) + c];
+            left[3 * r + c] = work[c];
+            right[3 * (n - r) + c] = work[3 * (n - r) + c];
         }
     }
-    if (point)
-        memcpy(point, work, 3 * sizeof(double));
 }
 
-/* The parameter where the (v-increasing) curve reaches v = y, by
- * bisection; 0 below its start, 1 above its end. */
-static double param_at_v(const double *cp, int n, double y)
-{
-    double lo = 0.0, hi = 1.0;
-    for (int it = 0; it < 64; it++) {
-        double mid = 0.5 * (lo + hi), pt[3];
-        split_at(cp, n, mid, pt, NULL, NULL);
-        if (pt[1] / pt[2] < y)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
+/* Subdivisions after which a sub-curve straddling a row edge is taken
+ * whole: its control polygon is then far narrower than a float step of
+ * the bounds' margin. */
+enum { PART_DEPTH = 24 };
 
-/* Bounds of u over the control points of the curve's part on [t0, t1]. */
-static void part_bounds(const double *cp, int n, double t0, double t1, double *u_min,
-                        double *u_max)
+/* Widens [*u_min, *u_max] to the u of every part of the curve whose v may
+ * lie in [y_lo, y_hi]. Works from control polygons only (the convex hull
+ * property), so it needs no monotony that rounding might have broken. */
+static void part_bounds(const double *cp, int n, double y_lo, double y_hi, int depth,
+                        double *u_min, double *u_max)
 {
-    double head[3 * MAX_POINTS], part[3 * MAX_POINTS];
-    split_at(cp, n, t1, NULL, head, NULL);
-    split_at(head, n, t1 > 0 ? t0 / t1 : 0.0, NULL, NULL, part);
-    *u_min = INFINITY;
-    *u_max = -INFINITY;
+    double lo_v = INFINITY, hi_v = -INFINITY, lo_u = INFINITY, hi_u = -INFINITY;
     for (int i = 0; i <= n; i++) {
-        double u = part[3 * i] / part[3 * i + 2];
-        *u_min = fmin(*u_min, u);
-        *u_max = fmax(*u_max, u);
+        double u = cp[3 * i] / cp[3 * i + 2], v = cp[3 * i + 1] / cp[3 * i + 2];
+        lo_v = fmin(lo_v, v);
+        hi_v = fmax(hi_v, v);
+        lo_u = fmin(lo_u, u);
+        hi_u = fmax(hi_u, u);
     }
+    if (hi_v < y_lo || lo_v > y_hi || (lo_u >= *u_min && hi_u <= *u_max))
+        return;
+    if ((lo_v >= y_lo && hi_v <= y_hi) || depth == PART_DEPTH) {
+        *u_min = fmin(*u_min, lo_u);
+        *u_max = fmax(*u_max, hi_u);
+        return;
+    }
+    double left[3 * MAX_POINTS], right[3 * MAX_POINTS];
+    halve(cp, n, left, right);
+    part_bounds(left, n, y_lo, y_hi, depth + 1, u_min, u_max);
+    part_bounds(right, n, y_lo, y_hi, depth + 1, u_min, u_max);
 }
 
 static int compare_floats(const void *pa, const void *pb)
 {
     float a = *(const float *)pa, b = *(const float *)pb;
     return (a > b) - (a < b);
-}
-
-typedef struct slab_item {
-    int piece;
-    double order;            /* u at the slab's middle */
-    float u_min, u_max;
-} slab_item;
-
-static int compare_items(const void *pa, const void *pb)
-{
-    const slab_item *a = pa, *b = pb;
-    return (a->order > b->order) - (a->order < b->order);
 }
 
 static float *texel(sc_trim_block *block, int index) { return block->texels + 4 * (size_t)index; }
@@ -201,94 +196,186 @@ static int pack_pieces(const sc_trim *trim, const double domain[4], int degree,
     return npieces;
 }
 
-/* The v slabs between consecutive distinct piece end points, and for each
- * the pieces spanning it, ordered by u at its middle. */
-typedef struct slab_list {
-    float *ys;               /* nslabs + 1 slab boundaries (1 when no pieces) */
-    int nslabs;
-    int *start;              /* nslabs + 1: first item of each slab, then nitems */
-    slab_item *items;
-    int nitems;
-} slab_list;
+/* ---- the grid ---- */
 
-static void build_slabs(const packed_piece *pieces, int npieces, int degree, slab_list *out)
+/* One entry of a cell's list: a piece that may pass through the cell, with
+ * the bounds of u over its part in the row, or (piece -1) a run of v where
+ * the pieces right of the cell add one crossing. */
+typedef struct grid_entry {
+    float v_lo, v_hi, u_min, u_max;
+    int piece;
+} grid_entry;
+
+typedef struct grid {
+    int cols, rows;
+    int *parity;             /* per cell (row-major): crossings mod 2 at the row's bottom */
+    int *first, *count;      /* per cell: its entries */
+    grid_entry *entries;
+    int nentries, cap;
+} grid;
+
+/* A piece's part in one row: its bounds of u. */
+typedef struct row_part {
+    int piece;
+    float u_min, u_max;
+} row_part;
+
+/* Cells per side: a power of two keeps u·side exact in float, so the cell
+ * the program computes is the one the packer means. */
+static int grid_side(int npieces)
 {
-    float *ys = sc_alloc(2 * (size_t)npieces + 1, sizeof *ys);
-    int ny = 0;
-    for (int k = 0; k < npieces; k++) {
-        ys[ny++] = pieces[k].v_lo;
-        ys[ny++] = pieces[k].v_hi;
+    int side = 1;
+    while (side * side < GRID_CELLS_PER_PIECE * npieces && side < MAX_GRID_SIDE)
+        side *= 2;
+    return side;
+}
+
+static void add_entry(grid *gr, grid_entry e)
+{
+    if (gr->nentries == gr->cap) {
+        gr->cap = gr->cap ? 2 * gr->cap : 64;
+        gr->entries = sc_realloc(gr->entries, (size_t)gr->cap, sizeof *gr->entries);
     }
-    qsort(ys, (size_t)ny, sizeof *ys, compare_floats);
-    int m = 0;
-    for (int k = 0; k < ny; k++)
-        if (m == 0 || ys[k] != ys[m - 1])
-            ys[m++] = ys[k];
-    if (m == 0)
-        ys[0] = 0.0f;
-    int nslabs = m > 1 ? m - 1 : 0;
-    int *slab_start = sc_alloc((size_t)nslabs + 1, sizeof *slab_start);
-    int items_cap = 64, nitems = 0;
-    slab_item *items = sc_alloc((size_t)items_cap, sizeof *items);
-    for (int sl = 0; sl < nslabs; sl++) {
-        slab_start[sl] = nitems;
-        double y_lo = ys[sl], y_hi = ys[sl + 1], y_mid = 0.5 * (y_lo + y_hi);
+    gr->entries[gr->nentries++] = e;
+}
+
+/* Edge k of n equal divisions of [0, 1], the outer edges at infinity. */
+static double grid_edge(int k, int n)
+{
+    return k == 0 ? -INFINITY : k == n ? INFINITY : (double)k / n;
+}
+
+/* The cell's entries and parity, from the pieces meeting its row. */
+static void fill_cell(grid *gr, const packed_piece *pieces, const row_part *parts, int nparts,
+                      int row, int col, int bias, float *flips)
+{
+    double y0 = grid_edge(row, gr->rows), y1 = grid_edge(row + 1, gr->rows);
+    double x0 = grid_edge(col, gr->cols), x1 = grid_edge(col + 1, gr->cols);
+    int cell = row * gr->cols + col, parity = bias, nflips = 0;
+    gr->first[cell] = gr->nentries;
+    for (int k = 0; k < nparts; k++) {
+        const row_part *part = &parts[k];
+        const packed_piece *pc = &pieces[part->piece];
+        if (part->u_max <= x0)
+            continue;
+        if (part->u_min < x1) {
+            add_entry(gr, (grid_entry){pc->v_lo, pc->v_hi, part->u_min, part->u_max, part->piece});
+            continue;
+        }
+        parity += pc->v_lo <= y0 && y0 < pc->v_hi;
+        if (pc->v_lo > y0 && pc->v_lo < y1)
+            flips[nflips++] = pc->v_lo;
+        if (pc->v_hi > y0 && pc->v_hi < y1)
+            flips[nflips++] = pc->v_hi;
+    }
+    /* The parity flips at each v left after equal pairs cancel: runs
+     * [f1, f2), [f3, f4), … add one crossing each. */
+    qsort(flips, (size_t)nflips, sizeof *flips, compare_floats);
+    int kept = 0;
+    for (int k = 0; k < nflips; k++) {
+        if (kept > 0 && flips[kept - 1] == flips[k])
+            kept--;
+        else
+            flips[kept++] = flips[k];
+    }
+    for (int k = 0; k < kept; k += 2) {
+        float end = k + 1 < kept ? flips[k + 1] : FLT_MAX;
+        add_entry(gr, (grid_entry){flips[k], end, FLT_MAX, FLT_MAX, -1});
+    }
+    gr->parity[cell] = parity % 2;
+    gr->count[cell] = gr->nentries - gr->first[cell];
+}
+
+static void build_grid(const packed_piece *pieces, int npieces, int degree, int bias, int cols,
+                       int rows, grid *gr)
+{
+    memset(gr, 0, sizeof *gr);
+    gr->cols = cols;
+    gr->rows = rows;
+    size_t ncells = (size_t)gr->cols * (size_t)gr->rows;
+    gr->parity = sc_alloc(ncells, sizeof *gr->parity);
+    gr->first = sc_alloc(ncells, sizeof *gr->first);
+    gr->count = sc_alloc(ncells, sizeof *gr->count);
+    row_part *parts = sc_alloc((size_t)npieces + 1, sizeof *parts);
+    float *flips = sc_alloc(2 * (size_t)npieces + 1, sizeof *flips);
+    for (int row = 0; row < gr->rows; row++) {
+        double y0 = grid_edge(row, gr->rows), y1 = grid_edge(row + 1, gr->rows);
+        int nparts = 0;
         for (int k = 0; k < npieces; k++) {
             const packed_piece *pc = &pieces[k];
-            if (!(pc->v_lo <= ys[sl] && pc->v_hi >= ys[sl + 1]))
+            if (!(pc->v_lo < y1 && y0 < pc->v_hi))
                 continue;
-            double cp[3 * MAX_POINTS];
+            double cp[3 * MAX_POINTS], lo = INFINITY, hi = -INFINITY;
             piece_points(pc, degree, cp);
-            /* The part in the slab, a little wider so that it surely covers
-             * the float curve's part. */
-            double t0 = pc->v_lo == ys[sl] ? 0.0 : fmax(0.0, param_at_v(cp, degree, y_lo) - 1e-9);
-            double t1 = pc->v_hi == ys[sl + 1] ? 1.0 : fmin(1.0, param_at_v(cp, degree, y_hi) + 1e-9);
-            double lo, hi, mid_pt[3];
-            part_bounds(cp, degree, t0, t1, &lo, &hi);
-            if (t0 == 0.0)
-                lo = fmin(lo, pc->u_lo), hi = fmax(hi, pc->u_lo);
-            split_at(cp, degree, param_at_v(cp, degree, y_mid), mid_pt, NULL, NULL);
-            if (nitems == items_cap) {
-                items_cap *= 2;
-                items = sc_realloc(items, (size_t)items_cap, sizeof *items);
+            part_bounds(cp, degree, fmax(y0, pc->v_lo), fmin(y1, pc->v_hi), 0, &lo, &hi);
+            if (pc->v_lo >= y0) {
+                lo = fmin(lo, pc->u_lo);
+                hi = fmax(hi, pc->u_lo);
             }
-            items[nitems++] = (slab_item){k, mid_pt[0] / mid_pt[2], float_down(lo - BOUND_MARGIN),
-                                          float_up(hi + BOUND_MARGIN)};
+            parts[nparts++] = (row_part){k, float_down(lo - BOUND_MARGIN),
+                                         float_up(hi + BOUND_MARGIN)};
         }
-        qsort(items + slab_start[sl], (size_t)(nitems - slab_start[sl]), sizeof *items,
-              compare_items);
+        for (int col = 0; col < gr->cols; col++)
+            fill_cell(gr, pieces, parts, nparts, row, col, bias, flips);
     }
-    slab_start[nslabs] = nitems;
-    *out = (slab_list){ys, nslabs, slab_start, items, nitems};
+    free(flips);
+    free(parts);
 }
 
-static void free_slabs(slab_list *slabs)
+static void free_grid(grid *gr)
 {
-    free(slabs->ys);
-    free(slabs->start);
-    free(slabs->items);
+    free(gr->parity);
+    free(gr->first);
+    free(gr->count);
+    free(gr->entries);
 }
 
-/* The texels: header, pieces, slab table, slab entries (gpu_layout.h). */
-static void write_block(const packed_piece *pieces, int npieces, const slab_list *slabs,
-                        const double domain[4], sc_trim_block *out)
+static long long block_texels(int npieces, int degree, const grid *gr)
+{
+    return SCG_TRIM_HEADER_TEXELS + (long long)npieces * SCG_TRIM_PIECE_TEXELS(degree) +
+           (long long)gr->cols * gr->rows + (long long)SCG_TRIM_ENTRY_TEXELS * gr->nentries;
+}
+
+/* The grid of the preferred size, or, when its block would reach the
+ * texels a float offset can address, of half the rows and columns. */
+static void fitting_grid(const packed_piece *pieces, int npieces, int degree, int bias, grid *gr)
+{
+    int cols = grid_side(npieces), rows = cols;
+    for (;;) {
+        build_grid(pieces, npieces, degree, bias, cols, rows, gr);
+        if (block_texels(npieces, degree, gr) < SCG_TRIM_MAX_TEXELS || (cols == 1 && rows == 1))
+            return;
+        free_grid(gr);
+        cols = cols > 1 ? cols / 2 : 1;
+        rows = rows > 1 ? rows / 2 : 1;
+    }
+}
+
+/* The texels: header, pieces, cells, entries (gpu_layout.h). */
+static int write_block(const packed_piece *pieces, int npieces, const grid *gr,
+                       const double domain[4], sc_trim_block *out, sc_error *err)
 {
     int degree = out->degree;
     double u0 = domain[0], v0 = domain[2];
     double su = 1.0 / (domain[1] - u0), sv = 1.0 / (domain[3] - v0);
     int piece_texels = SCG_TRIM_PIECE_TEXELS(degree);
-    int slab_offset = SCG_TRIM_HEADER_TEXELS + npieces * piece_texels;
-    int item_offset = slab_offset + slabs->nslabs + 1;
+    long long cell_offset = SCG_TRIM_HEADER_TEXELS + (long long)npieces * piece_texels;
+    long long entry_offset = cell_offset + (long long)gr->cols * gr->rows;
+    long long ntexels = block_texels(npieces, degree, gr);
+    if (ntexels >= SCG_TRIM_MAX_TEXELS)
+        return sc_fail(err, NULL, 0, "trim block of %lld texels: offsets from %d on are not exact "
+                       "in float", ntexels, SCG_TRIM_MAX_TEXELS);
     out->npieces = npieces;
-    out->nslabs = slabs->nslabs;
-    out->nitems = slabs->nitems;
-    out->ntexels = item_offset + slabs->nitems;
+    out->grid_u = gr->cols;
+    out->grid_v = gr->rows;
+    out->nentries = gr->nentries;
+    out->ntexels = (int)ntexels;
     out->texels = sc_alloc(4 * (size_t)out->ntexels, sizeof(float));
     float *h = texel(out, 0);
     h[0] = (float)npieces;
-    h[1] = (float)slabs->nslabs;
-    h[2] = (float)out->bias;
-    h[3] = (float)slab_offset;
+    h[1] = (float)out->bias;
+    h[2] = (float)gr->cols;
+    h[3] = (float)gr->rows;
     h = texel(out, 1);
     h[0] = (float)su;
     h[1] = (float)sv;
@@ -306,18 +393,24 @@ static void write_block(const packed_piece *pieces, int npieces, const slab_list
             memcpy(texel(out, at + 1 + i), &pc->cp[3 * i], 3 * sizeof(float));
         texel(out, at + 1)[3] = pc->u_lo;
     }
-    for (int sl = 0; sl <= slabs->nslabs; sl++) {
-        float *t = texel(out, slab_offset + sl);
-        t[0] = slabs->ys[sl];
-        t[1] = (float)(item_offset + slabs->start[sl]);
-        t[2] = sl < slabs->nslabs ? (float)(slabs->start[sl + 1] - slabs->start[sl]) : 0.0f;
+    for (int cell = 0; cell < gr->cols * gr->rows; cell++) {
+        float *t = texel(out, (int)cell_offset + cell);
+        t[0] = (float)gr->parity[cell];
+        t[1] = gr->count[cell] ? (float)(entry_offset + SCG_TRIM_ENTRY_TEXELS * gr->first[cell])
+                               : 0.0f;
+        t[2] = (float)gr->count[cell];
     }
-    for (int i = 0; i < slabs->nitems; i++) {
-        float *t = texel(out, item_offset + i);
-        t[0] = (float)(SCG_TRIM_HEADER_TEXELS + slabs->items[i].piece * piece_texels);
-        t[1] = slabs->items[i].u_min;
-        t[2] = slabs->items[i].u_max;
+    for (int k = 0; k < gr->nentries; k++) {
+        const grid_entry *e = &gr->entries[k];
+        float *t = texel(out, (int)entry_offset + SCG_TRIM_ENTRY_TEXELS * k);
+        t[0] = e->v_lo;
+        t[1] = e->v_hi;
+        t[2] = e->u_min;
+        t[3] = e->u_max;
+        if (e->piece >= 0)
+            t[4] = (float)(SCG_TRIM_HEADER_TEXELS + e->piece * piece_texels);
     }
+    return SC_OK;
 }
 
 int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *err)
@@ -339,14 +432,14 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
     sc_surface_domain(s, &domain[0], &domain[1], &domain[2], &domain[3]);
     packed_piece *pieces = sc_alloc((size_t)trim->npieces + 1, sizeof *pieces);
     int npieces = pack_pieces(trim, domain, degree, pieces);
-    slab_list slabs;
-    build_slabs(pieces, npieces, degree, &slabs);
     out->bias = trim->kept_without_crossings;
-    write_block(pieces, npieces, &slabs, domain, out);
-    free_slabs(&slabs);
+    grid gr;
+    fitting_grid(pieces, npieces, degree, out->bias, &gr);
+    int status = write_block(pieces, npieces, &gr, domain, out, err);
+    free_grid(&gr);
     free(pieces);
     sc_trim_free(trim);
-    return SC_OK;
+    return status;
 }
 
 void sc_trim_block_free(sc_trim_block *block)

@@ -553,7 +553,8 @@ TEST(trimgpu_scene_keys)
 TEST(trimgpu_pack_layout)
 {
     /* Domain [2, 6] × [-1, 1]; outer rectangle (0.25..0.75)² normalised:
-     * two vertical pieces (the horizontal edges leave), one slab. */
+     * two vertical pieces (the horizontal edges leave), a 4 × 4 grid
+     * (about 4 cells a piece). */
     sc_scene scene;
     sc_scene_init(&scene);
     sc_surface *s = add_patch(&scene, 2, 6, -1, 1);
@@ -565,17 +566,22 @@ TEST(trimgpu_pack_layout)
     CHECK_INT(sc_trim_pack(s, 2, &block, &err), SC_OK);
     CHECK_INT(block.degree, 2);
     CHECK_INT(block.npieces, 2);
-    CHECK_INT(block.nslabs, 1);
-    CHECK_INT(block.nitems, 2);
+    CHECK_INT(block.grid_u, 4);
+    CHECK_INT(block.grid_v, 4);
     CHECK_INT(block.bias, 0);
     int piece = SCG_TRIM_PIECE_TEXELS(2);
     CHECK_INT(piece, 4);
-    CHECK_INT(block.ntexels, 2 + 2 * piece + 2 + 2);
+    /* The edges u = 0.25 and 0.75 are column boundaries: a piece's bounds,
+     * widened by a few float steps, reach into the cells on both sides, so
+     * rows 1 and 2 list each piece in 2 cells. */
+    CHECK_INT(block.nentries, 2 * 2 * 2);
+    int cells = 2 + 2 * piece;
+    CHECK_INT(block.ntexels, cells + 16 + SCG_TRIM_ENTRY_TEXELS * block.nentries);
     const float *t = block.texels;
     CHECK_NEAR(t[0], 2, 0);
-    CHECK_NEAR(t[1], 1, 0);
-    CHECK_NEAR(t[2], 0, 0);
-    CHECK_NEAR(t[3], 2 + 2 * piece, 0);
+    CHECK_NEAR(t[1], 0, 0);
+    CHECK_NEAR(t[2], 4, 0);
+    CHECK_NEAR(t[3], 4, 0);
     CHECK_NEAR(t[4], 0.25, 0);   /* scale_u = 1 / 4 */
     CHECK_NEAR(t[5], 0.5, 0);    /* scale_v = 1 / 2 */
     CHECK_NEAR(t[6], -0.5, 0);   /* offset_u = -2 / 4 */
@@ -584,6 +590,7 @@ TEST(trimgpu_pack_layout)
      * other at 0.25; a line elevated to degree 2 has its middle point at
      * the middle. */
     double seen_u = 0;
+    int piece_at[2] = {0, 0};    /* texel offset of the piece at u = 0.25, 0.75 */
     for (int k = 0; k < 2; k++) {
         const float *h = t + 4 * (2 + k * piece);
         CHECK_NEAR(h[0], 0.25, 0);
@@ -591,6 +598,7 @@ TEST(trimgpu_pack_layout)
         CHECK(h[2] < h[3]);
         double u = h[4 + 3];                 /* u_lo in the first point's w */
         CHECK(u == 0.25 || u == 0.75);
+        piece_at[u == 0.75] = 2 + k * piece;
         CHECK_NEAR(h[2], u, 1e-6);
         CHECK_NEAR(h[3], u, 1e-6);
         for (int i = 0; i < 3; i++) {
@@ -601,17 +609,30 @@ TEST(trimgpu_pack_layout)
         seen_u += u;
     }
     CHECK_NEAR(seen_u, 1.0, 0);
-    /* The slab [0.25, 0.75) holds both pieces, left one first. */
-    const float *slab = t + 4 * (2 + 2 * piece);
-    CHECK_NEAR(slab[0], 0.25, 0);
-    CHECK_NEAR(slab[2], 2, 0);
-    CHECK_NEAR(slab[4], 0.75, 0);   /* the end */
-    CHECK_NEAR(slab[6], 0, 0);
-    const float *items = t + 4 * (int)slab[1];
-    CHECK_NEAR(t[4 * (int)items[0] + 4 + 3], 0.25, 0);
-    CHECK_NEAR(t[4 * (int)items[4] + 4 + 3], 0.75, 0);
-    CHECK_NEAR(items[1], 0.25, 1e-6);
-    CHECK_NEAR(items[6], 0.75, 1e-6);
+    /* Cells, known by construction. Rows 0 and 3 (v < 0.25, v >= 0.75)
+     * meet no piece: parity 0, no entry. In rows 1 and 2 both pieces span
+     * the row. Their bounds, widened by a few float steps, reach into the
+     * columns on both sides of their edge: columns 0 and 1 list the piece
+     * at 0.25 and have the one at 0.75 wholly right (parity 1), columns 2
+     * and 3 list the piece at 0.75 and nothing lies right (parity 0). */
+    static const int parity[4] = {1, 1, 0, 0};
+    for (int row = 0; row < 4; row++)
+        for (int col = 0; col < 4; col++) {
+            const float *cell = t + 4 * (cells + 4 * row + col);
+            bool inner = row == 1 || row == 2;
+            CHECK_NEAR(cell[0], inner ? parity[col] : 0, 0);
+            CHECK_NEAR(cell[2], inner ? 1 : 0, 0);
+            if (!inner)
+                continue;
+            const float *entry = t + 4 * (int)cell[1];
+            double u = col < 2 ? 0.25 : 0.75;
+            CHECK_INT((int)entry[4], piece_at[col >= 2]);
+            CHECK_NEAR(entry[0], 0.25, 0);
+            CHECK_NEAR(entry[1], 0.75, 0);
+            CHECK(entry[2] < u && u < entry[3]);
+            CHECK_NEAR(entry[2], u, 1e-6);
+            CHECK_NEAR(entry[3], u, 1e-6);
+        }
     sc_trim_block_free(&block);
     /* A degree below the curves' is refused; holes only give bias 1. */
     CHECK_INT(sc_trim_pack(s, 0, &block, &err), SC_FAIL);
@@ -620,7 +641,88 @@ TEST(trimgpu_pack_layout)
     make_shape(&scene, SHAPE_HOLES_ONLY, 0, 1, 0, 1);
     CHECK_INT(sc_trim_pack(&scene.surfaces[0], 2, &block, &err), SC_OK);
     CHECK_INT(block.bias, 1);
-    CHECK_NEAR(block.texels[2], 1, 0);
+    CHECK_NEAR(block.texels[1], 1, 0);
+    /* The bottom-left cell lies outside both holes: kept by parity alone. */
+    const float *corner = block.texels + 4 * (2 + block.npieces * SCG_TRIM_PIECE_TEXELS(2));
+    CHECK_NEAR(corner[0], 1, 0);
+    CHECK_NEAR(corner[2], 0, 0);
+    sc_trim_block_free(&block);
+    sc_scene_free(&scene);
+}
+
+/* Runs of v where the pieces right of a cell flip its parity, on 4 × 4
+ * grids; the runs' ends are the pieces' float end points. */
+TEST(trimgpu_pack_runs)
+{
+    /* Outer loop on the domain's edges, a triangle hole with its lowest
+     * corner at (0.8, 0.4) and a horizontal top edge at v = 0.9. */
+    sc_scene scene;
+    sc_scene_init(&scene);
+    sc_surface *s = add_patch(&scene, 0, 1, 0, 1);
+    static const double outer[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    static const double tri[3][2] = {{0.8, 0.4}, {0.95, 0.9}, {0.65, 0.9}};
+    add_polygon(s, 0, outer, 4);
+    add_polygon(s, 1, tri, 3);
+    sc_trim_block block;
+    sc_error err;
+    CHECK_INT(sc_trim_pack(s, 1, &block, &err), SC_OK);
+    CHECK_INT(block.npieces, 4);
+    CHECK_INT(block.grid_u, 4);
+    CHECK_INT(block.grid_v, 4);
+    const float *t = block.texels;
+    int cells = 2 + 4 * SCG_TRIM_PIECE_TEXELS(1);
+    /* Column 1, row 1 (u, v in [0.25, 0.5)): the outer edge u = 1 spans
+     * the row (parity 1); both triangle sides, right of the cell, start at
+     * v = 0.4: their flips cancel. Decided by the parity alone. */
+    const float *cell = t + 4 * (cells + 4 * 1 + 1);
+    CHECK_NEAR(cell[0], 1, 0);
+    CHECK_NEAR(cell[2], 0, 0);
+    /* Column 1, row 3 (v >= 0.75, to infinity): the triangle's sides end
+     * at 0.9 (cancel), the outer edge u = 1 ends at v = 1: one run from
+     * 1 on, where the point leaves the outer loop. */
+    cell = t + 4 * (cells + 4 * 3 + 1);
+    CHECK_NEAR(cell[0], 1, 0);
+    CHECK_NEAR(cell[2], 1, 0);
+    const float *run = t + 4 * (int)cell[1];
+    CHECK_NEAR(run[0], 1.0, 0);
+    CHECK(run[1] == FLT_MAX && run[2] == FLT_MAX && run[3] == FLT_MAX);
+    CHECK_NEAR(run[4], 0, 0);
+    sc_trim_block_free(&block);
+    sc_scene_free(&scene);
+
+    /* Holes only (bias 1): a triangle (0.55, 0.3), (0.95, 0.9), (0.05, 0.45).
+     * In column 1, row 1 the side from (0.05, 0.45) down to the corner
+     * passes through the cell (listed), the side from the corner up to
+     * (0.95, 0.9) lies right of it and starts in the row (a run from 0.3),
+     * the top side lies left of it. */
+    sc_scene_init(&scene);
+    s = add_patch(&scene, 0, 1, 0, 1);
+    static const double hole[3][2] = {{0.55, 0.3}, {0.95, 0.9}, {0.05, 0.45}};
+    add_polygon(s, 1, hole, 3);
+    CHECK_INT(sc_trim_pack(s, 1, &block, &err), SC_OK);
+    CHECK_INT(block.npieces, 3);
+    CHECK_INT(block.grid_u, 4);
+    t = block.texels;
+    cells = 2 + 3 * SCG_TRIM_PIECE_TEXELS(1);
+    cell = t + 4 * (cells + 4 * 1 + 1);
+    CHECK_NEAR(cell[0], 1, 0);
+    CHECK_NEAR(cell[2], 2, 0);
+    int listed = 0, runs = 0;
+    for (int e = 0; e < 2; e++) {
+        const float *entry = t + 4 * ((int)cell[1] + SCG_TRIM_ENTRY_TEXELS * e);
+        if (entry[4] > 0) {
+            listed++;
+            CHECK_NEAR(entry[0], 0.3f, 0);
+            CHECK_NEAR(entry[1], 0.45f, 0);
+            CHECK(entry[2] <= 0.05 + 1e-6 && entry[3] >= 0.55 - 1e-6);
+        } else {
+            runs++;
+            CHECK_NEAR(entry[0], 0.3f, 0);
+            CHECK(entry[1] == FLT_MAX && entry[2] == FLT_MAX);
+        }
+    }
+    CHECK_INT(listed, 1);
+    CHECK_INT(runs, 1);
     sc_trim_block_free(&block);
     sc_scene_free(&scene);
 }
@@ -668,6 +770,65 @@ TEST(trimgpu_probe_many_pieces)
     static const shape shapes[] = {SHAPE_POLY100, SHAPE_POLY1000};
     run_methods(all_methods + 2, 1, shapes, 2, 0, 1, 0, 1, 600);
     run_methods(all_methods, 2, shapes, 1, 0, 1, 0, 1, 300);
+}
+
+/* The accelerated method's second phase: a point whose cell lists two
+ * pieces it lies between the bounds of. A narrow V-shaped hole with its
+ * tip at (0.5, 0.3), on a 4 × 4 grid: in the row [0.25, 0.5) the parts of
+ * both sides reach u = 0.5, so points above the tip on u = 0.5 lie within
+ * the bounds of both; both are clipped — at least one clipping iteration
+ * each — the second found by the scan that follows the first clipping.
+ * The verdict must be the reference's. */
+TEST(trimgpu_probe_two_ambiguous)
+{
+    sc_scene scene;
+    sc_scene_init(&scene);
+    sc_surface *s = add_patch(&scene, 0, 1, 0, 1);
+    static const double v_hole[3][2] = {{0.5, 0.3}, {0.51, 0.6}, {0.49, 0.6}};
+    add_polygon(s, 1, v_hole, 3);
+    sc_trim *trim;
+    sc_error err;
+    probe p;
+    CHECK_INT(sc_trim_prepare(s, &trim, &err), SC_OK);
+    CHECK_INT(probe_open(&p, "fast1i16", s, &err), SC_OK);
+    int tested = 0, wrong = 0;
+    CHECK_INT(p.block.grid_v, 4);
+    for (int k = 1; k <= 40; k++) {
+        float v = (float)(0.3 + 0.00495 * k);
+        int iters = 0;
+        int kept = probe_run(&p, 0.5f, v, NULL, &iters);
+        tested++;
+        wrong += kept != sc_trim_inside(trim, 0.5, v);
+        CHECK(iters >= 2);
+    }
+    CHECK_INT(tested, 40);
+    CHECK_INT(wrong, 0);
+    probe_close(&p);
+    sc_trim_free(trim);
+    sc_scene_free(&scene);
+}
+
+/* Loops that cross each other (left unvalidated): the reference counts
+ * crossings with every piece, the even-odd rule of the loops as they are.
+ * The grid needs no order among the pieces of a row, only that each is a
+ * curve, so every method must still agree with it. */
+TEST(trimgpu_probe_crossing_loops)
+{
+    sc_scene scene;
+    sc_scene_init(&scene);
+    sc_surface *s = add_patch(&scene, 0, 1, 0, 1);
+    add_polygon(s, 0, outer_square, 4);
+    add_circle(s, 1, 0.42, 0.5, 0.25);
+    add_circle(s, 1, 0.58, 0.45, 0.2);
+    for (int m = 0; m < 3; m++) {
+        char field[32];
+        agreement a;
+        snprintf(field, sizeof field, all_methods[m], 2);
+        CHECK(check_surface(field, s, 400, &a));
+        CHECK(a.tested > 500);
+        CHECK_INT(a.wrong, 0);
+    }
+    sc_scene_free(&scene);
 }
 
 TEST(trimgpu_example_scenes)
@@ -875,9 +1036,9 @@ TEST(trimgpu_cost_per_pixel)
                     per_ray, per_ray / base_steps, 1e6 * times[RUNS / 2] / (GRID * GRID),
                     100.0 * hits / (GRID * GRID));
             if (m == 3)
-                fprintf(stderr, "  %-11s block: %d slabs, %d slab entries, %d texels (%d bytes)\n",
-                        shape_names[shapes[k]], block.nslabs, block.nitems, block.ntexels,
-                        16 * block.ntexels);
+                fprintf(stderr, "  %-11s block: %d x %d cells, %d entries, %d texels (%d bytes)\n",
+                        shape_names[shapes[k]], block.grid_u, block.grid_v, block.nentries,
+                        block.ntexels, 16 * block.ntexels);
             free(f.texels);
             sc_trim_block_free(&block);
             scg_interp_free(it);
