@@ -76,6 +76,7 @@ static const char *ert_words(scg_ert ert)
     case SCG_ERT_NONE: return "no early ray termination";
     case SCG_ERT_BEFORE: return "early ray termination before the intersection";
     case SCG_ERT_BOTH: return "early ray termination before and after the intersection";
+    case SCG_ERT_CONSERVATIVE: return "conservative depth (depth_greater)";
     }
     return "?";
 }
@@ -598,11 +599,22 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
                         NEAREST_T_BINDING);
         scg_text_append(&parts[GLOBALS],
                         "// Early ray termination: the ray parameter of the nearest surface so "
-                        "far, in\n// units of sc_ray_dir.\nfloat sc_t_limit;\n\n");
-        scg_text_append(&parts[PREPARE], "sc_t_limit = texelFetch(sc_nearest_t, "
-                                         "ivec2(gl_FragCoord.xy), 0).r / length(sc_ray_dir);\n");
+                        "far, in\n// units of sc_ray_dir.\nfloat sc_t_limit = 0.0;\n\n");
+        /* The intersection refuses such a hull too; leaving at once also
+         * skips loading the patch and the final evaluation where the
+         * hardware branches per group of pixels. */
+        scg_text_append(&parts[PREPARE],
+                        "sc_t_limit = texelFetch(sc_nearest_t, ivec2(gl_FragCoord.xy), 0).r / "
+                        "length(sc_ray_dir);\n"
+                        "// The hull's front face (t = 1) lies behind the nearest surface so far.\n"
+                        "if (sc_t_limit < 1.0)\n    discard;\n");
     }
     output_declarations(&parts[OUTPUTS], key->outputs);
+    if (key->ert == SCG_ERT_CONSERVATIVE)
+        scg_text_append(&parts[OUTPUTS],
+                        "// The hit lies on the ray behind the hull's front face: its depth is "
+                        "never less\n// than the fragment's, so early depth testing may stay "
+                        "on.\nlayout(depth_greater) out float gl_FragDepth;\n");
 
     unsigned need = needed_results(key->outputs);
     for (int s = 0; s < SCG_OUTPUT_COUNT; s++)

@@ -266,8 +266,8 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
                            "tolT with T in pixel footprints, 0.001 to 1000, at most 3 decimals");
     rest = fields[8];
     int ert = -1;
-    if (strncmp(rest, "ert", 3) != 0 || (rest += 3, !read_int(&rest, &ert)) || *rest || ert > 2)
-        return field_error(err, text, 8, fields[8], "ert0, ert1 or ert2");
+    if (strncmp(rest, "ert", 3) != 0 || (rest += 3, !read_int(&rest, &ert)) || *rest || ert > 3)
+        return field_error(err, text, 8, fields[8], "ert0, ert1, ert2 or ert3");
     k.ert = (scg_ert)ert;
     if (strncmp(fields[9], "out.", 4) != 0)
         return field_error(err, text, 9, fields[9], "out. followed by shade, aov, iters, uv");

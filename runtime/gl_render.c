@@ -1,12 +1,13 @@
 /* gl_render.c — the render path (gl_render.h). Preparation: a key per
  * surface, one program per distinct key (programs.h), the patch data
- * (gl_data.h), the hulls (hulls.h) in one vertex buffer. A frame: sort the
- * hulls of each program front to back, draw each program's hulls with one
- * call (hulls holding the eye by their back faces, so that their rays still
- * start), then read back. Programs are switched once per key, not per hull:
- * the order is front to back within a program, which is what early ray
- * termination needs, and the depth test keeps the image exact whatever the
- * order. */
+ * (gl_data.h), the hulls (hulls.h) in one vertex buffer. A frame: order the
+ * hulls by the draw-order policy, cut the order into draw calls (one per
+ * run of hulls with the same program) and, for the manual early ray
+ * termination, into batches separated by texture barriers; hulls holding
+ * the eye go first, by their back faces, so that their rays still start.
+ * The depth test keeps the image exact whatever the order and whatever
+ * early termination skips: termination only drops work whose result the
+ * depth test would reject. */
 #include "gl_render.h"
 
 #include <math.h>
@@ -22,8 +23,9 @@
 
 /* Fragment-stage uniform and vertex-stage uniform locations (templates/hull.vert). */
 enum { LOC_VIEW_PROJECTION = 16, LOC_EYE = 17 };
-/* Texture unit of the per-surface colours (emit_glsl.c, hull.vert). */
-enum { COLOUR_UNIT = 3 };
+/* Texture units of the per-surface colours (emit_glsl.c, hull.vert) and of
+ * the nearest distance so far, `sc_nearest_t` (emit_glsl.c, ert1/ert2 keys). */
+enum { COLOUR_UNIT = 3, NEAREST_T_UNIT = 4 };
 
 /* One vertex of a hull as the vertex program reads it (templates/hull.vert:
  * locations 0 position, 1 start (u, v), 2 sub-patch domain, 3 record). */
@@ -34,11 +36,31 @@ typedef struct gpu_vertex {
     int32_t record;
 } gpu_vertex;
 
+/* The hulls drawn with one program. */
 typedef struct group {
     sc_program program;
-    int nhulls;
-    int *hulls;              /* indices into r->hulls.subpatches */
+    /* The same key without early termination, for hulls holding the eye:
+     * drawn by their back faces, their hits lie in front of the fragment,
+     * which both the manual test (t < 1 on the hull) and depth_greater
+     * assume is not so. Compiled when a frame first needs it. */
+    sc_program inside;
 } group;
+
+/* One draw call of a frame. */
+typedef struct draw_run {
+    int group;
+    int inside;              /* hulls holding the eye: back faces, `inside` program */
+    int first, count;        /* range of the frame's index buffer */
+} draw_run;
+
+/* A hull's place in the frame's order: by major, then minor, then group,
+ * then distance (the hull index makes the order total). */
+typedef struct sort_item {
+    double major, minor;
+    int group;
+    double distance;
+    int hull;
+} sort_item;
 
 struct sc_renderer {
     const sc_gl *gl;
@@ -52,14 +74,26 @@ struct sc_renderer {
     sc_hulls hulls;
     int ngroups;
     group *groups;
+    int *hull_group;         /* per hull: its group */
     GLuint vertex_array, vertex_buffer, index_buffer, colour_buffer, colour_texture;
     size_t hull_bytes, colour_bytes;
     sc_gl_target target;
+    GLuint nearest_view;     /* the uvt attachment seen with t in .r, as sc_nearest_t */
     sc_camera camera;        /* of the last frame */
+    int draw_calls, program_switches, barriers, culled, readbacks;  /* of the last frame */
     double compile_ms;
     /* per frame scratch */
     uint32_t *frame_indices;
     double *distance;
+    sort_item *items;
+    int *inside;             /* hulls holding the eye */
+    draw_run *runs;
+    double *group_seen;      /* per group, for the hybrid buckets */
+    float *nearest;          /* read back: the uvt attachment (nearest distance so
+                                far in .z) */
+    float *tile_far;         /* its largest value per tile */
+    float *cosine;           /* per pixel: cosine of its ray to the view direction */
+    double cosine_fovy;      /* the field of view they are for (0: none yet) */
 };
 
 int sc_view_parse(const char *text, sc_view *view, sc_error *err)
@@ -73,6 +107,81 @@ int sc_view_parse(const char *text, sc_view *view, sc_error *err)
     return sc_fail(err, NULL, 0, "unknown view '%s' (shade, uv, iters, normal or depth)", text);
 }
 
+int sc_trim_method_parse(const char *text, scg_trim_mode *mode, int *iters, sc_error *err)
+{
+    static const struct { const char *name; scg_trim_mode mode; } methods[] = {
+        {"clip", SCG_TRIM_CLIP}, {"left", SCG_TRIM_LEFT}, {"fast", SCG_TRIM_FAST}};
+    const char *colon = strchr(text, ':');
+    size_t len = colon ? (size_t)(colon - text) : strlen(text);
+    for (int i = 0; i < 3; i++) {
+        if (strlen(methods[i].name) != len || strncmp(text, methods[i].name, len))
+            continue;
+        if (colon) {
+            char *end;
+            long n = strtol(colon + 1, &end, 10);
+            if (end == colon + 1 || *end || n < 1 || n > SCG_MAX_TRIM_ITERS)
+                return sc_fail(err, NULL, 0, "trim iterations take 1 to %d, not '%s'",
+                               SCG_MAX_TRIM_ITERS, colon + 1);
+            *iters = (int)n;
+        }
+        *mode = methods[i].mode;
+        return SC_OK;
+    }
+    return sc_fail(err, NULL, 0, "unknown trim method '%s' (clip, left or fast[:ITERS])", text);
+}
+
+static const char *const ert_names[] = {"default", "none", "conservative", "manual",
+                                        "manual-both"};
+static const char *const order_names[] = {"default", "front-to-back", "by-program", "hybrid"};
+
+int sc_ert_mode_parse(const char *text, sc_ert_mode *mode, sc_error *err)
+{
+    for (int i = 1; i < 5; i++)
+        if (!strcmp(text, ert_names[i])) {
+            *mode = (sc_ert_mode)i;
+            return SC_OK;
+        }
+    return sc_fail(err, NULL, 0, "unknown early ray termination '%s' "
+                                 "(none, conservative, manual or manual-both)", text);
+}
+
+const char *sc_ert_mode_name(sc_ert_mode mode)
+{
+    return (unsigned)mode < 5 ? ert_names[mode] : "?";
+}
+
+int sc_draw_order_parse(const char *text, sc_draw_order *order, sc_error *err)
+{
+    for (int i = 1; i < 4; i++)
+        if (!strcmp(text, order_names[i])) {
+            *order = (sc_draw_order)i;
+            return SC_OK;
+        }
+    return sc_fail(err, NULL, 0, "unknown draw order '%s' (front-to-back, by-program or hybrid)",
+                   text);
+}
+
+const char *sc_draw_order_name(sc_draw_order order)
+{
+    return (unsigned)order < 4 ? order_names[order] : "?";
+}
+
+/* The key's early-termination mode for the render's. */
+static scg_ert key_ert(sc_ert_mode mode)
+{
+    switch (mode) {
+    case SC_ERT_CONSERVATIVE: return SCG_ERT_CONSERVATIVE;
+    case SC_ERT_MANUAL: return SCG_ERT_BEFORE;
+    case SC_ERT_MANUAL_BOTH: return SCG_ERT_BOTH;
+    default: return SCG_ERT_NONE;
+    }
+}
+
+static int manual_ert(sc_ert_mode mode)
+{
+    return mode == SC_ERT_MANUAL || mode == SC_ERT_MANUAL_BOTH;
+}
+
 /* The key of one surface (scene_keys.h): its degrees, rationality and
  * trims, the render's start, iterations and outputs; the generic program
  * above the unrolling limit, or everywhere when asked. */
@@ -84,6 +193,9 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
         .max_iters = desc->max_iters > 0 ? desc->max_iters : SC_RENDER_DEFAULT_ITERS,
         .tol_milli = desc->tol_milli > 0 ? desc->tol_milli : SC_RENDER_DEFAULT_TOL_MILLI,
         .start = desc->start_set ? desc->start : SCG_START_CP,
+        .trim_method = desc->trim_method,
+        .trim_iters = desc->trim_iters,
+        .ert = key_ert(desc->ert),
         .outputs = SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV |
                    (desc->view == SC_VIEW_ITERS ? SCG_OUTPUT_ITERS : 0) |
                    (desc->view == SC_VIEW_UV ? SCG_OUTPUT_UVVIEW : 0),
@@ -144,27 +256,38 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     gl->VertexArrayElementBuffer(vao, r->index_buffer);
     r->frame_indices = sc_realloc(r->frame_indices, (size_t)(h->nindices ? h->nindices : 1),
                                   sizeof(uint32_t));
-    r->distance = sc_realloc(r->distance, (size_t)(h->count ? h->count : 1), sizeof(double));
+    size_t count = (size_t)(h->count ? h->count : 1);
+    r->distance = sc_realloc(r->distance, count, sizeof(double));
+    r->items = sc_realloc(r->items, count, sizeof *r->items);
+    r->inside = sc_realloc(r->inside, count, sizeof *r->inside);
+    /* At most one run per hull, plus the inside hulls' runs per group. */
+    r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
     return sc_gl_check(gl, "uploading the hulls", err);
 }
 
-/* Hulls by program: group g holds the hulls of the surfaces drawn with
- * program g. */
+/* Hulls by program: group g is drawn with program id g + 1, the programs
+ * the surfaces asked for first (the cache numbers them in that order;
+ * programs for hulls holding the eye come later). Built once; the inside
+ * programs already compiled are kept. */
 static void build_groups(sc_renderer *r)
 {
-    for (int g = 0; g < r->ngroups; g++)
-        free(r->groups[g].hulls);
-    free(r->groups);
-    r->ngroups = sc_program_count(r->programs);
-    r->groups = sc_alloc((size_t)r->ngroups, sizeof *r->groups);
-    for (int g = 0; g < r->ngroups; g++) {
-        r->groups[g].program.id = (uint32_t)g + 1;
-        r->groups[g].hulls = sc_alloc((size_t)(r->hulls.count ? r->hulls.count : 1), sizeof(int));
+    int ngroups = 0;
+    for (int s = 0; s < r->scene->nsurfaces; s++)
+        if ((int)r->surface_program[s].id > ngroups)
+            ngroups = (int)r->surface_program[s].id;
+    if (ngroups != r->ngroups) {
+        free(r->groups);
+        r->ngroups = ngroups;
+        r->groups = sc_alloc((size_t)(ngroups ? ngroups : 1), sizeof *r->groups);
+        r->group_seen = sc_realloc(r->group_seen, (size_t)(ngroups ? ngroups : 1),
+                                   sizeof(double));
+        for (int g = 0; g < ngroups; g++)
+            r->groups[g].program.id = (uint32_t)g + 1;
     }
-    for (int k = 0; k < r->hulls.count; k++) {
-        group *g = &r->groups[r->surface_program[r->hulls.subpatches[k].surface].id - 1];
-        g->hulls[g->nhulls++] = k;
-    }
+    r->hull_group = sc_realloc(r->hull_group, (size_t)(r->hulls.count ? r->hulls.count : 1),
+                               sizeof(int));
+    for (int k = 0; k < r->hulls.count; k++)
+        r->hull_group[k] = (int)r->surface_program[r->hulls.subpatches[k].surface].id - 1;
 }
 
 static void setup_vertex_array(sc_renderer *r)
@@ -210,6 +333,12 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     r->gl = gl;
     r->scene = scene;
     r->desc = desc ? *desc : defaults;
+    if (!r->desc.ert)
+        r->desc.ert = SC_RENDER_DEFAULT_ERT;
+    if (!r->desc.order)
+        r->desc.order = SC_RENDER_DEFAULT_ORDER;
+    if (r->desc.batch_hulls <= 0)
+        r->desc.batch_hulls = SC_RENDER_DEFAULT_BATCH_HULLS;
     int n = scene->nsurfaces;
     r->keys = sc_alloc((size_t)(n ? n : 1), sizeof *r->keys);
     r->kinds = sc_alloc((size_t)(n ? n : 1), sizeof *r->kinds);
@@ -243,6 +372,8 @@ void sc_renderer_destroy(sc_renderer *r)
     if (!r)
         return;
     const sc_gl *gl = r->gl;
+    if (r->nearest_view)
+        gl->DeleteTextures(1, &r->nearest_view);
     sc_gl_target_destroy(gl, &r->target);
     sc_gpu_data_free(gl, &r->data);
     GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};
@@ -255,14 +386,20 @@ void sc_renderer_destroy(sc_renderer *r)
         gl->DeleteVertexArrays(1, &r->vertex_array);
     sc_program_cache_destroy(r->programs);
     sc_hulls_free(&r->hulls);
-    for (int g = 0; g < r->ngroups; g++)
-        free(r->groups[g].hulls);
     free(r->groups);
+    free(r->hull_group);
     free(r->keys);
     free(r->kinds);
     free(r->surface_program);
     free(r->frame_indices);
     free(r->distance);
+    free(r->items);
+    free(r->inside);
+    free(r->runs);
+    free(r->group_seen);
+    free(r->nearest);
+    free(r->tile_far);
+    free(r->cosine);
     free(r);
 }
 
@@ -320,30 +457,215 @@ static double box_distance(const double lo[3], const double hi[3], const double 
     return sqrt(d2);
 }
 
-typedef struct ranked {
-    double distance;
-    int index;
-} ranked;
-
-static int by_distance(const void *a, const void *b)
+static int by_order(const void *a, const void *b)
 {
-    double x = ((const ranked *)a)->distance, y = ((const ranked *)b)->distance;
-    return x < y ? -1 : x > y;
+    const sort_item *x = a, *y = b;
+    if (x->major != y->major)
+        return x->major < y->major ? -1 : 1;
+    if (x->minor != y->minor)
+        return x->minor < y->minor ? -1 : 1;
+    if (x->group != y->group)
+        return x->group < y->group ? -1 : 1;
+    if (x->distance != y->distance)
+        return x->distance < y->distance ? -1 : 1;
+    return (x->hull > y->hull) - (x->hull < y->hull);
 }
 
-/* Sorts `items` (indices) by their distances, nearest first. */
-static void sort_by_distance(int *items, int n, const double *distance, ranked *scratch)
+/* Puts r->items[0, n) — hulls not holding the eye, distances filled in —
+ * in the order of the draw-order policy. */
+static void order_hulls(sc_renderer *r, int n)
 {
-    for (int k = 0; k < n; k++)
-        scratch[k] = (ranked){distance[items[k]], items[k]};
-    qsort(scratch, (size_t)n, sizeof *scratch, by_distance);
-    for (int k = 0; k < n; k++)
-        items[k] = scratch[k].index;
+    sort_item *items = r->items;
+    qsort(items, (size_t)n, sizeof *items, by_order);
+    if (r->desc.order == SC_ORDER_FRONT_TO_BACK)
+        return;
+    /* By program: the programs in the order of their nearest hull, front to
+     * back within one. Hybrid: the same within each bucket of batch_hulls
+     * hulls taken front to back. In depth order, a group's first hull in a
+     * range is its nearest there. */
+    int bucket = r->desc.order == SC_ORDER_HYBRID ? r->desc.batch_hulls : (n ? n : 1);
+    for (int start = 0; start < n; start += bucket) {
+        int end = start + bucket < n ? start + bucket : n;
+        for (int g = 0; g < r->ngroups; g++)
+            r->group_seen[g] = INFINITY;
+        for (int k = start; k < end; k++) {
+            int g = r->hull_group[items[k].hull];
+            if (r->group_seen[g] == INFINITY)
+                r->group_seen[g] = items[k].distance;
+            items[k].major = start;
+            items[k].minor = r->group_seen[g];
+            items[k].group = g;
+        }
+    }
+    qsort(items, (size_t)n, sizeof *items, by_order);
+}
+
+/* The program for hulls of group g that hold the eye (see `group`). */
+static int inside_program(sc_renderer *r, int g, sc_error *err)
+{
+    group *gr = &r->groups[g];
+    if (gr->inside.id)
+        return SC_OK;
+    scg_key key = *sc_program_key(r->programs, gr->program);
+    key.ert = SCG_ERT_NONE;
+    return sc_program_for_key(r->programs, &key, &gr->inside, err);
+}
+
+/* Appends hull k to the frame's index list and to the last draw call when
+ * it continues it, else to a new one. */
+static void append_hull(sc_renderer *r, int *nruns, int *nidx, int k, int inside)
+{
+    const sc_subpatch *s = &r->hulls.subpatches[k];
+    int g = r->hull_group[k];
+    draw_run *last = *nruns ? &r->runs[*nruns - 1] : NULL;
+    if (!last || last->group != g || last->inside != inside) {
+        last = &r->runs[(*nruns)++];
+        *last = (draw_run){.group = g, .inside = inside, .first = *nidx};
+    }
+    memcpy(r->frame_indices + *nidx, r->hulls.indices + s->first_index,
+           (size_t)s->index_count * sizeof(uint32_t));
+    *nidx += s->index_count;
+    last->count += s->index_count;
+}
+
+/* Uploads the indices of runs [0, nruns) (from index `first` on) and draws
+ * them. */
+static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *current)
+{
+    const sc_gl *gl = r->gl;
+    if (nidx > first)
+        gl->NamedBufferSubData(r->index_buffer, (GLintptr)first * 4,
+                               (GLsizeiptr)(nidx - first) * 4, r->frame_indices + first);
+    for (int i = 0; i < nruns; i++) {
+        const draw_run *run = &r->runs[i];
+        const group *gr = &r->groups[run->group];
+        GLuint program = sc_program_gl_name(
+            r->programs, run->inside && gr->inside.id ? gr->inside : gr->program);
+        if (program != *current) {
+            gl->UseProgram(program);
+            *current = program;
+            r->program_switches++;
+        }
+        gl->CullFace(run->inside ? GL_FRONT : GL_BACK);
+        gl->DrawElements(GL_TRIANGLES, run->count, GL_UNSIGNED_INT,
+                         (const void *)((size_t)run->first * sizeof(uint32_t)));
+        r->draw_calls++;
+    }
+}
+
+/* Whole hulls are culled between batches in the manual modes: the nearest
+ * distance so far is read back, turned into depth along the view direction
+ * (which, unlike the distance, a box's corners bound) and kept as its
+ * largest value over tiles of NEAREST_TILE² pixels. */
+enum { NEAREST_TILE = 8 };
+
+static void read_nearest_tiles(sc_renderer *r)
+{
+    const sc_camera *cam = &r->camera;
+    const sc_gl *gl = r->gl;
+    int w = r->target.width, h = r->target.height;
+    int tw = (w + NEAREST_TILE - 1) / NEAREST_TILE, th = (h + NEAREST_TILE - 1) / NEAREST_TILE;
+    /* All four channels: the attachment's own format reads back as a copy,
+     * one channel alone goes through a per-pixel conversion. */
+    r->nearest = sc_realloc(r->nearest, 4 * (size_t)w * (size_t)h, sizeof(float));
+    r->tile_far = sc_realloc(r->tile_far, (size_t)tw * (size_t)th, sizeof(float));
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    /* uvt.z: the distance along the unit ray; rows bottom-up, as the window. */
+    gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
+                        (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->nearest);
+    for (int t = 0; t < tw * th; t++)
+        r->tile_far[t] = 0;
+    /* Depth = distance × the cosine between the pixel's ray and the view
+     * direction; the pixel's ray is (sx, sy, 1) in the camera's frame. The
+     * cosines depend only on the size and the field of view. */
+    if (r->cosine_fovy != cam->fovy_deg) {
+        r->cosine = sc_realloc(r->cosine, (size_t)w * (size_t)h, sizeof(float));
+        double tan_half = tan(0.5 * cam->fovy_deg * M_PI / 180.0);
+        double aspect = (double)w / h;
+        for (int y = 0; y < h; y++) {
+            double sy = (2.0 * (y + 0.5) / h - 1) * tan_half;
+            for (int x = 0; x < w; x++) {
+                double sx = (2.0 * (x + 0.5) / w - 1) * tan_half * aspect;
+                r->cosine[(size_t)y * (size_t)w + (size_t)x] =
+                    (float)(1 / sqrt(1 + sx * sx + sy * sy));
+            }
+        }
+        r->cosine_fovy = cam->fovy_deg;
+    }
+    for (int y = 0; y < h; y++) {
+        float *row = r->tile_far + (size_t)(y / NEAREST_TILE) * (size_t)tw;
+        const float *uvt = r->nearest + 4 * (size_t)y * (size_t)w;
+        const float *cosine = r->cosine + (size_t)y * (size_t)w;
+        for (int x = 0; x < w; x++) {
+            float depth = uvt[4 * x + 2] * cosine[x];
+            if (depth > row[x / NEAREST_TILE])
+                row[x / NEAREST_TILE] = depth;
+        }
+    }
+    r->readbacks++;
+}
+
+/* Whether hull k lies behind the nearest surface so far at every pixel it
+ * can cover: its box, projected (vp, column-major) and widened by a pixel,
+ * touches only tiles whose largest depth so far is nearer than the box's
+ * nearest corner (along the view direction fwd). Along any ray of those
+ * pixels every point of the hull then lies behind the hit already there, so
+ * no hit of the hull can pass the depth test. */
+static int hull_hidden(const sc_renderer *r, const float vp[16], const double fwd[3], int k)
+{
+    const sc_subpatch *s = &r->hulls.subpatches[k];
+    int w = r->target.width, h = r->target.height;
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY, near = INFINITY;
+    for (int c = 0; c < 8; c++) {
+        double p[3] = {c & 1 ? s->hi[0] : s->lo[0], c & 2 ? s->hi[1] : s->lo[1],
+                       c & 4 ? s->hi[2] : s->lo[2]};
+        double d[3] = {p[0] - r->camera.eye[0], p[1] - r->camera.eye[1], p[2] - r->camera.eye[2]};
+        near = fmin(near, dot3(d, fwd));
+        double clip[4];
+        for (int row = 0; row < 4; row++)
+            clip[row] = vp[row] * p[0] + vp[4 + row] * p[1] + vp[8 + row] * p[2] + vp[12 + row];
+        if (!(clip[3] > 1e-9))
+            return 0;  /* a corner at or behind the eye: no bounded rectangle */
+        double x = (0.5 * clip[0] / clip[3] + 0.5) * w, y = (0.5 * clip[1] / clip[3] + 0.5) * h;
+        x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+    }
+    int tw = (w + NEAREST_TILE - 1) / NEAREST_TILE;
+    int tx0 = (int)fmax(floor(x0 - 1), 0) / NEAREST_TILE;
+    int tx1 = (int)fmin(ceil(x1 + 1), w - 1) / NEAREST_TILE;
+    int ty0 = (int)fmax(floor(y0 - 1), 0) / NEAREST_TILE;
+    int ty1 = (int)fmin(ceil(y1 + 1), h - 1) / NEAREST_TILE;
+    if (x1 < 0 || y1 < 0 || x0 >= w || y0 >= h)
+        return 1;  /* off screen */
+    /* A margin for the float distances the programs write. */
+    near *= 1 - 1e-5;
+    for (int ty = ty0; ty <= ty1; ty++)
+        for (int tx = tx0; tx <= tx1; tx++)
+            if (!(r->tile_far[ty * tw + tx] < near))
+                return 0;
+    return 1;
+}
+
+/* The distance channel of the uvt attachment (t along the unit ray in .z)
+ * seen through a view whose red channel is that .z: the texture the
+ * ert1/ert2 programs read as sc_nearest_t. */
+static void make_nearest_view(sc_renderer *r)
+{
+    const sc_gl *gl = r->gl;
+    if (r->nearest_view)
+        gl->DeleteTextures(1, &r->nearest_view);
+    gl->GenTextures(1, &r->nearest_view);
+    gl->TextureView(r->nearest_view, GL_TEXTURE_2D, r->target.colour[SCG_FRAG_OUT_UVT],
+                    GL_RGBA32F, 0, 1, 0, 1);
+    static const GLint swizzle[4] = {GL_BLUE, GL_ZERO, GL_ZERO, GL_ONE};
+    gl->TextureParameteriv(r->nearest_view, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+    gl->TextureParameteri(r->nearest_view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TextureParameteri(r->nearest_view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
 int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
 {
     const sc_gl *gl = r->gl;
+    int manual = manual_ert(r->desc.ert);
     GLenum formats[SC_GL_TARGET_MAX_COLOURS];
     target_formats(r->desc.view, formats);
     if (r->target.width != cam->width || r->target.height != cam->height) {
@@ -352,6 +674,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
         memcpy(td.formats, formats, sizeof td.formats);
         if (sc_gl_target_create(gl, &td, &r->target, err) != SC_OK)
             return SC_FAIL;
+        if (manual)
+            make_nearest_view(r);
+        r->cosine_fovy = 0;
     }
     r->camera = *cam;
     double fwd[3], right[3], up[3];
@@ -370,6 +695,24 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
     float eye[3] = {(float)cam->eye[0], (float)cam->eye[1], (float)cam->eye[2]};
 
+    /* Hulls holding the eye go first (their hits may lie anywhere in front
+     * of the other hulls), grouped by program; then the others in the
+     * order of the policy. */
+    const sc_hulls *h = &r->hulls;
+    int ninside = 0, n = 0;
+    for (int k = 0; k < h->count; k++) {
+        double d = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, cam->eye);
+        if (d == 0 && sc_hull_contains(h, k, cam->eye))
+            r->inside[ninside++] = k;
+        else
+            r->items[n++] = (sort_item){.distance = d, .hull = k};
+    }
+    order_hulls(r, n);
+    for (int i = 0; i < ninside; i++)
+        if (r->desc.ert != SC_ERT_NONE &&
+            inside_program(r, r->hull_group[r->inside[i]], err) != SC_OK)
+            return SC_FAIL;
+
     float bg = background_linear();
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{bg, bg, bg, 1}, {-1, -1, -1, -1}};
     /* uvt.z is the distance to the nearest surface so far: far away. */
@@ -384,66 +727,66 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     gl->BindVertexArray(r->vertex_array);
     sc_gpu_data_bind(gl, &r->data);
     gl->BindTextureUnit(COLOUR_UNIT, r->colour_texture);
-
-    /* Front to back within each program; the programs in the order of their
-     * nearest hull. Hulls holding the eye go by their back faces. */
-    const sc_hulls *h = &r->hulls;
-    for (int k = 0; k < h->count; k++)
-        r->distance[k] = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, cam->eye);
-    int ngroups = r->ngroups;
-    int *group_order = sc_alloc((size_t)(ngroups ? ngroups : 1), sizeof(int));
-    double *group_near = sc_alloc((size_t)(ngroups ? ngroups : 1), sizeof(double));
-    ranked *scratch = sc_alloc((size_t)(h->count > ngroups ? h->count : ngroups) + 1,
-                               sizeof *scratch);
-    for (int g = 0; g < ngroups; g++) {
-        group *gr = &r->groups[g];
-        sort_by_distance(gr->hulls, gr->nhulls, r->distance, scratch);
-        group_near[g] = gr->nhulls ? r->distance[gr->hulls[0]] : INFINITY;
-        group_order[g] = g;
+    if (manual) {
+        gl->BindTextureUnit(NEAREST_T_UNIT, r->nearest_view);
+        /* The clear is a write the first batch reads. */
+        gl->TextureBarrier();
     }
-    sort_by_distance(group_order, ngroups, group_near, scratch);
-    free(scratch);
-
-    /* Index ranges: per group, the hulls around the eye, then the others. */
-    int nidx = 0;
-    int *inside_start = sc_alloc((size_t)(2 * ngroups + 1), sizeof(int));
-    for (int gi = 0; gi < ngroups; gi++) {
-        group *gr = &r->groups[group_order[gi]];
-        for (int pass = 0; pass < 2; pass++) {
-            inside_start[2 * gi + pass] = nidx;
-            for (int k = 0; k < gr->nhulls; k++) {
-                const sc_subpatch *s = &h->subpatches[gr->hulls[k]];
-                int inside = r->distance[gr->hulls[k]] == 0 &&
-                             sc_hull_contains(h, gr->hulls[k], cam->eye);
-                if (inside != (pass == 0))
-                    continue;
-                memcpy(r->frame_indices + nidx, h->indices + s->first_index,
-                       (size_t)s->index_count * sizeof(uint32_t));
-                nidx += s->index_count;
-            }
-        }
-    }
-    inside_start[2 * ngroups] = nidx;
-    if (nidx)
-        gl->NamedBufferSubData(r->index_buffer, 0, (GLsizeiptr)nidx * 4, r->frame_indices);
-    for (int gi = 0; gi < ngroups; gi++) {
-        GLuint program = sc_program_gl_name(r->programs, r->groups[group_order[gi]].program);
-        gl->UseProgram(program);
-        gl->ProgramUniformMatrix4fv(program, LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
-        gl->ProgramUniform3fv(program, LOC_EYE, 1, eye);
-        gl->ProgramUniform1f(program, SCG_UNI_FOOTPRINT, footprint);
-        for (int pass = 0; pass < 2; pass++) {
-            int first = inside_start[2 * gi + pass], count = inside_start[2 * gi + pass + 1] - first;
-            if (!count)
+    for (int g = 0; g < r->ngroups; g++) {
+        sc_program programs[2] = {r->groups[g].program, r->groups[g].inside};
+        for (int i = 0; i < 2; i++) {
+            GLuint program = sc_program_gl_name(r->programs, programs[i]);
+            if (!program)
                 continue;
-            gl->CullFace(pass == 0 ? GL_FRONT : GL_BACK);
-            gl->DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT,
-                             (const void *)((size_t)first * sizeof(uint32_t)));
+            gl->ProgramUniformMatrix4fv(program, LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
+            gl->ProgramUniform3fv(program, LOC_EYE, 1, eye);
+            gl->ProgramUniform1f(program, SCG_UNI_FOOTPRINT, footprint);
         }
     }
-    free(inside_start);
-    free(group_order);
-    free(group_near);
+
+    r->draw_calls = r->program_switches = r->barriers = r->culled = r->readbacks = 0;
+    GLuint current = 0;
+    int nruns = 0, nidx = 0;
+    for (int g = 0; g < r->ngroups; g++)
+        for (int i = 0; i < ninside; i++)
+            if (r->hull_group[r->inside[i]] == g)
+                append_hull(r, &nruns, &nidx, r->inside[i], 1);
+    submit_runs(r, nruns, 0, nidx, &current);
+    /* Batches of batch_hulls drawn hulls (all of them but in the manual
+     * modes), each after a texture barrier, so that it sees every hit of the
+     * batches before it; between batches, whole hulls behind those hits are
+     * culled. A read-back that culled nothing doubles the next batch: it
+     * costs a copy of the attachment, which only culling repays. */
+    int batch = manual ? r->desc.batch_hulls : n + 1;
+    int drawn_before = ninside;
+    for (int p = 0; p < n;) {
+        int first = nidx, drawn = 0, culled = 0;
+        nruns = 0;
+        for (; p < n && drawn < batch; p++) {
+            int k = r->items[p].hull;
+            if (r->readbacks && hull_hidden(r, vp, fwd, k)) {
+                culled++;
+                continue;
+            }
+            append_hull(r, &nruns, &nidx, k, 0);
+            drawn++;
+        }
+        r->culled += culled;
+        if (r->readbacks && !culled && batch < n)
+            batch *= 2;
+        if (!drawn)
+            break;
+        if (manual && drawn_before) {
+            gl->TextureBarrier();
+            r->barriers++;
+        }
+        submit_runs(r, nruns, first, nidx, &current);
+        drawn_before += drawn;
+        if (manual && p < n)
+            read_nearest_tiles(r);
+    }
+    if (manual)
+        gl->BindTextureUnit(NEAREST_T_UNIT, 0);
     gl->Disable(GL_FRAMEBUFFER_SRGB);
     gl->Finish();
     return sc_gl_check(gl, "drawing the hulls", err);
@@ -565,6 +908,11 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->triangles = r->hulls.nindices / 3;
     stats->gpu_bytes = r->data.bytes + r->hull_bytes + r->colour_bytes;
     stats->compile_ms = r->compile_ms;
+    stats->draw_calls = r->draw_calls;
+    stats->program_switches = r->program_switches;
+    stats->barriers = r->barriers;
+    stats->culled_hulls = r->culled;
+    stats->readbacks = r->readbacks;
 }
 
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface)

@@ -24,6 +24,37 @@ typedef enum sc_view {
 } sc_view;
 
 int sc_view_parse(const char *text, sc_view *view, sc_error *err);
+/* "clip", "left" or "fast", optionally ":ITERS" (1 … SCG_MAX_TRIM_ITERS);
+ * *iters is left alone when no cap is given. */
+int sc_trim_method_parse(const char *text, scg_trim_mode *mode, int *iters, sc_error *err);
+
+/* How a hull whose pixels are already covered by a nearer hit is skipped. */
+typedef enum sc_ert_mode {
+    SC_ERT_DEFAULT = 0,
+    SC_ERT_NONE,            /* every hull fragment runs the intersection */
+    SC_ERT_CONSERVATIVE,    /* depth written with layout(depth_greater) so
+                               early depth testing may stay on */
+    SC_ERT_MANUAL,          /* nearest hit so far read from a texture: the
+                               intersection is skipped behind it, and whole
+                               hulls behind it are culled between batches */
+    SC_ERT_MANUAL_BOTH,     /* also a hit found behind it is dropped before
+                               trimming and shading */
+} sc_ert_mode;
+
+/* The order hulls are drawn in each frame. */
+typedef enum sc_draw_order {
+    SC_ORDER_DEFAULT = 0,
+    SC_ORDER_FRONT_TO_BACK, /* strictly by nearest hull depth */
+    SC_ORDER_BY_PROGRAM,    /* grouped by program, front to back within one */
+    SC_ORDER_HYBRID,        /* depth buckets, by program within a bucket */
+} sc_draw_order;
+
+/* "none", "conservative", "manual" or "manual-both"; and back. */
+int sc_ert_mode_parse(const char *text, sc_ert_mode *mode, sc_error *err);
+const char *sc_ert_mode_name(sc_ert_mode mode);
+/* "front-to-back", "by-program" or "hybrid"; and back. */
+int sc_draw_order_parse(const char *text, sc_draw_order *order, sc_error *err);
+const char *sc_draw_order_name(sc_draw_order order);
 
 /* Zero means default in every field. */
 typedef struct sc_render_desc {
@@ -38,10 +69,24 @@ typedef struct sc_render_desc {
                                surface, whatever its degree */
     int unroll_max_degree;  /* highest degree drawn with unrolled programs
                                (SC_UNROLL_MAX_DEGREE, programs.h) */
+    scg_trim_mode trim_method; /* trim method of trimmed surfaces: SCG_TRIM_FAST
+                               (default), SCG_TRIM_CLIP or SCG_TRIM_LEFT */
+    int trim_iters;         /* cap on clipping iterations per trim crossing
+                               (SCG_DEFAULT_TRIM_ITERS) */
+    sc_ert_mode ert;        /* early ray termination */
+    sc_draw_order order;    /* draw order policy */
+    int batch_hulls;        /* hulls per batch between texture barriers in
+                               the manual modes (doubling after a batch
+                               that culled no hull), and per bucket of the
+                               hybrid order (SC_RENDER_DEFAULT_BATCH_HULLS) */
 } sc_render_desc;
 
 #define SC_RENDER_DEFAULT_ITERS 6
 #define SC_RENDER_DEFAULT_TOL_MILLI 50
+/* Chosen by measurement (docs/speed.md, `splinecast bench --ert`, `--order`). */
+#define SC_RENDER_DEFAULT_ERT SC_ERT_MANUAL
+#define SC_RENDER_DEFAULT_ORDER SC_ORDER_HYBRID
+#define SC_RENDER_DEFAULT_BATCH_HULLS 32
 
 typedef struct sc_render_stats {
     int programs;           /* distinct keys compiled */
@@ -49,6 +94,14 @@ typedef struct sc_render_stats {
     int triangles;
     size_t gpu_bytes;       /* patch data, hull vertices and indices, colours */
     double compile_ms;      /* generating, validating, compiling and linking */
+    /* Of the last frame: */
+    int draw_calls;
+    int program_switches;   /* glUseProgram calls */
+    int barriers;           /* glTextureBarrier calls (manual early ray
+                               termination) */
+    int culled_hulls;       /* hulls not drawn: behind the hits so far at
+                               every pixel they cover (manual modes) */
+    int readbacks;          /* reads of the nearest distance so far */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;

@@ -108,7 +108,7 @@ TEST(key_malformed_refused)
         {"bez3x3-poly-dc-trim0-newton-mid-it0-tol0.25-ert0-out.shade", "from 1 to 64"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0-ert0-out.shade", "tolerance"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.0005-ert0-out.shade", "at most 3 decimals"},
-        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert3-out.shade", "ert0, ert1 or ert2"},
+        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert4-out.shade", "ert0, ert1, ert2 or ert3"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.", "outputs"},
         {"bez3x3-poly-loop-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "dyn"},
         {"bezdyn-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "dyn"},

@@ -6,12 +6,15 @@
  * loops, so that their ratio is measured on one machine state. With
  * --degrees: one full-screen Bézier patch per degree, unrolled against
  * generic, with compile times: the figures that set the unrolling limit
- * (programs.h). */
+ * (programs.h) and the draw time by degree. With --ert, --order or --batch:
+ * the early-termination and draw-order sweep of bench_order.c over one or
+ * more scenes. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench.h"
 #include "commands.h"
 #include "gl_context.h"
 #include "gl_render.h"
@@ -24,6 +27,7 @@ static const char usage[] =
     "line per program variant:\n"
     "  bench variant=specialized|generic frame_ms=T mpix_s=M covered=N iters_mean=I\n"
     "        gpu_bytes=B programs=P hulls=H triangles=T compile_ms=C compile_ms_per_program=C\n"
+    "        draw_calls=N program_switches=N barriers=N culled_hulls=N readbacks=N\n"
     "and the ratio of the two frame times. frame_ms is the median of the timed\n"
     "frames after a warm-up frame; mpix_s counts covered pixels only.\n"
     "\n"
@@ -35,8 +39,22 @@ static const char usage[] =
     "  --hull uniform:N|adaptive:TOL   proxy hulls (default adaptive:0.003)\n"
     "  --init mid|cpmap       Newton start (default cpmap)\n"
     "  --frames N             timed frames (default 5)\n"
+    "  --ert LIST             early ray termination: all or a comma list of none,\n"
+    "                         conservative, manual, manual-both\n"
+    "  --order LIST           draw order: all or a comma list of front-to-back,\n"
+    "                         by-program, hybrid\n"
+    "  --batch LIST           comma list of hulls per batch (manual early ray\n"
+    "                         termination, hybrid buckets)\n"
+    "                         Any of these three: every SCENE given (several may\n"
+    "                         be) under every combination, one line each:\n"
+    "                           bench variant=sweep scene=S ert=E order=O batch=B ...\n"
+    "                         then per combination the frame time of the last\n"
+    "                         scene over the first, and per scene each\n"
+    "                         combination's frame time over the first one's\n"
     "  --degrees LO-HI        instead of a scene: one bumpy Bezier patch of each\n"
-    "                         degree LO..HI filling the view, unrolled vs generic\n";
+    "                         degree LO..HI filling the view, unrolled vs generic\n"
+    "  --trim-table           instead of a scene: the cost of trimming, trimmed /\n"
+    "                         untrimmed per method (bench --trim-table --help)\n";
 
 static int compare_double(const void *a, const void *b)
 {
@@ -44,15 +62,8 @@ static int compare_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-typedef struct result {
-    double frame_ms, mpix_s, iters_mean, compile_ms;
-    long covered;
-    sc_render_stats stats;
-} result;
-
-/* Builds a renderer, draws a warm-up frame and `frames` timed ones. */
-static int run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
-               const sc_camera *cam, int frames, result *out, sc_error *err)
+int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
+              const sc_camera *cam, int frames, bench_result *out, sc_error *err)
 {
     sc_renderer *r;
     memset(out, 0, sizeof *out);
@@ -91,14 +102,17 @@ static int run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *des
     return status;
 }
 
-static void print_result(const char *variant, const char *extra, const result *r)
+void bench_print(const char *variant, const char *extra, const bench_result *r)
 {
     printf("bench variant=%s%s frame_ms=%.2f mpix_s=%.2f covered=%ld iters_mean=%.3f "
            "gpu_bytes=%zu programs=%d hulls=%d triangles=%d compile_ms=%.1f "
-           "compile_ms_per_program=%.1f\n",
+           "compile_ms_per_program=%.1f draw_calls=%d program_switches=%d barriers=%d "
+           "culled_hulls=%d readbacks=%d\n",
            variant, extra, r->frame_ms, r->mpix_s, r->covered, r->iters_mean,
            r->stats.gpu_bytes, r->stats.programs, r->stats.hulls, r->stats.triangles,
-           r->compile_ms, r->stats.programs ? r->compile_ms / r->stats.programs : 0);
+           r->compile_ms, r->stats.programs ? r->compile_ms / r->stats.programs : 0,
+           r->stats.draw_calls, r->stats.program_switches, r->stats.barriers,
+           r->stats.culled_hulls, r->stats.readbacks);
     fflush(stdout);
 }
 
@@ -128,12 +142,13 @@ static void bumpy_patch(sc_scene *scene, int d)
 static int bench_degrees(const sc_gl *gl, sc_render_desc desc, int lo, int hi, int width,
                          int height, int frames)
 {
+    bench_result lowest = {0};
     for (int d = lo; d <= hi; d++) {
         sc_scene scene;
         bumpy_patch(&scene, d);
         sc_camera cam = {.eye = {0, -0.001, 3.2}, .target = {0, 0, 0.15}, .fovy_deg = 36,
                          .width = width, .height = height};
-        result unrolled, generic;
+        bench_result unrolled, generic;
         sc_error err = {0};
         char extra[32];
         snprintf(extra, sizeof extra, " degree=%dx%d", d, d);
@@ -141,22 +156,25 @@ static int bench_degrees(const sc_gl *gl, sc_render_desc desc, int lo, int hi, i
         /* Above the unrolling limit the runtime itself picks the generic
          * program; the sweep wants the unrolled one at every degree. */
         desc.unroll_max_degree = SCG_MAX_DEGREE;
-        int status = run(gl, &scene, &desc, &cam, frames, &unrolled, &err);
+        int status = bench_run(gl, &scene, &desc, &cam, frames, &unrolled, &err);
         if (status == SC_OK) {
-            print_result("unrolled", extra, &unrolled);
+            bench_print("unrolled", extra, &unrolled);
             desc.generic = 1;
-            status = run(gl, &scene, &desc, &cam, frames, &generic, &err);
+            status = bench_run(gl, &scene, &desc, &cam, frames, &generic, &err);
         }
         sc_scene_free(&scene);
         if (status != SC_OK)
             return cli_report(&err);
-        print_result("generic", extra, &generic);
+        bench_print("generic", extra, &generic);
         double saved = generic.frame_ms - unrolled.frame_ms;
         double extra_compile = unrolled.compile_ms - generic.compile_ms;
+        if (d == lo)
+            lowest = unrolled;
         printf("bench degree=%dx%d frame_ratio_generic_over_unrolled=%.2f "
-               "break_even_frames=%s%.0f\n",
+               "break_even_frames=%s%.0f unrolled_frame_ratio_over_%dx%d=%.2f\n",
                d, d, generic.frame_ms / unrolled.frame_ms, saved > 0 ? "" : "never:",
-               saved > 0 ? fmax(extra_compile, 0) / saved : 0);
+               saved > 0 ? fmax(extra_compile, 0) / saved : 0, lo, lo,
+               unrolled.frame_ms / lowest.frame_ms);
         fflush(stdout);
     }
     return 0;
@@ -164,6 +182,9 @@ static int bench_degrees(const sc_gl *gl, sc_render_desc desc, int lo, int hi, i
 
 int cmd_bench(int argc, char **argv)
 {
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--trim-table"))
+            return bench_trim_table(argc, argv);
     if (cli_wants_help(argc, argv)) {
         fputs(usage, stdout);
         return 0;
@@ -171,8 +192,9 @@ int cmd_bench(int argc, char **argv)
     const char *scene_path = "teapot", *camera_arg = NULL;
     sc_gl_context_desc ctx_desc = {0};
     sc_render_desc desc = {0};
-    int width = 1024, height = 1024, frames = 5, deg_lo = 0, deg_hi = 0;
+    int width = 1024, height = 1024, frames = 5, deg_lo = 0, deg_hi = 0, status = 0;
     sc_error err = {0};
+    bench_sweep sweep = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
@@ -212,18 +234,40 @@ int cmd_bench(int argc, char **argv)
                 deg_hi < deg_lo || deg_hi > SCG_MAX_DEGREE)
                 return cli_usage_error("bench", "--degrees takes LO-HI within 1-%d, not '%s'",
                                        SCG_MAX_DEGREE, argv[i]);
+        } else if (!strcmp(a, "--ert") && next) {
+            if ((status = bench_sweep_parse_erts(argv[++i], &sweep)) != 0)
+                return status;
+        } else if (!strcmp(a, "--order") && next) {
+            if ((status = bench_sweep_parse_orders(argv[++i], &sweep)) != 0)
+                return status;
+        } else if (!strcmp(a, "--batch") && next) {
+            if ((status = bench_sweep_parse_batches(argv[++i], &sweep)) != 0)
+                return status;
         } else if (a[0] != '-') {
+            if (sweep.nscenes == (int)(sizeof sweep.scenes / sizeof sweep.scenes[0]))
+                return cli_usage_error("bench", "at most %d scenes",
+                                       (int)(sizeof sweep.scenes / sizeof sweep.scenes[0]));
             scene_path = a;
+            sweep.scenes[sweep.nscenes++] = a;
         } else {
             return cli_usage_error("bench", "unexpected argument '%s'", a);
         }
     }
+    int sweeping = sweep.nerts || sweep.norders || sweep.nbatches;
+    if (sweep.nscenes > 1 && !sweeping)
+        return cli_usage_error("bench", "several scenes need --ert, --order or --batch");
     sc_gl_context *ctx;
     if (sc_gl_context_create(&ctx_desc, &ctx, &err) != SC_OK)
         return cli_report(&err);
     fprintf(stderr, "bench: %s\n", sc_gl_context_description(ctx));
     const sc_gl *gl = sc_gl_context_gl(ctx);
-    int status;
+    if (sweeping) {
+        if (!sweep.nscenes)
+            sweep.scenes[sweep.nscenes++] = scene_path;
+        status = bench_sweep_run(gl, &sweep, desc, camera_arg, width, height, frames);
+        sc_gl_context_destroy(ctx);
+        return status;
+    }
     if (deg_lo) {
         status = bench_degrees(gl, desc, deg_lo, deg_hi, width, height, frames);
         sc_gl_context_destroy(ctx);
@@ -242,16 +286,16 @@ int cmd_bench(int argc, char **argv)
     } else {
         cam.width = width;
         cam.height = height;
-        result specialized, generic;
-        if (run(gl, &scene, &desc, &cam, frames, &specialized, &err) != SC_OK) {
+        bench_result specialized, generic;
+        if (bench_run(gl, &scene, &desc, &cam, frames, &specialized, &err) != SC_OK) {
             status = cli_report(&err);
         } else {
-            print_result("specialized", "", &specialized);
+            bench_print("specialized", "", &specialized);
             desc.generic = 1;
-            if (run(gl, &scene, &desc, &cam, frames, &generic, &err) != SC_OK) {
+            if (bench_run(gl, &scene, &desc, &cam, frames, &generic, &err) != SC_OK) {
                 status = cli_report(&err);
             } else {
-                print_result("generic", "", &generic);
+                bench_print("generic", "", &generic);
                 printf("bench frame_ratio_generic_over_specialized=%.2f\n",
                        generic.frame_ms / specialized.frame_ms);
             }

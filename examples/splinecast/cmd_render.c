@@ -33,10 +33,19 @@ static const char usage[] =
     "                         control-point parameters interpolated over the hull\n"
     "                         (default cpmap)\n"
     "  --view shade|uv|iters|normal|depth   what the PNG shows (default shade)\n"
+    "  --trim clip|left|fast[:ITERS]   trim method of trimmed surfaces and its cap\n"
+    "                         on clipping iterations per crossing (default fast:16)\n"
+    "  --ert none|conservative|manual|manual-both   early ray termination\n"
+    "                         (default manual)\n"
+    "  --order front-to-back|by-program|hybrid   draw order (default hybrid)\n"
+    "  --batch N              hulls per batch between texture barriers (manual\n"
+    "                         early ray termination) and per hybrid bucket\n"
+    "                         (default 32)\n"
     "  --frames N             frames timed after a warm-up frame (default 5)\n"
     "  --ref                  also render the CPU reference and print its accuracy\n"
     "\n"
     "stdout: stats programs=N hulls=N triangles=N gpu_bytes=N compile_ms=T frame_ms=T\n"
+    "        draw_calls=N program_switches=N barriers=N culled_hulls=N readbacks=N\n"
     "        (frame_ms: median of the timed frames; compile_ms: generating,\n"
     "        validating, compiling and linking the programs, plus the warm-up\n"
     "        frame's excess over the median, where llvmpipe finishes compiling)\n"
@@ -113,6 +122,23 @@ int cmd_render(int argc, char **argv)
             else
                 return cli_usage_error("render", "--init takes mid or cpmap, not '%s'", argv[i]);
             desc.start_set = 1;
+        } else if (!strcmp(a, "--trim") && next) {
+            if (sc_trim_method_parse(argv[++i], &desc.trim_method, &desc.trim_iters, &err) !=
+                SC_OK)
+                return cli_usage_error("render", "--trim: %s", err.message);
+        } else if (!strcmp(a, "--ert") && next) {
+            if (sc_ert_mode_parse(argv[++i], &desc.ert, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
+        } else if (!strcmp(a, "--order") && next) {
+            if (sc_draw_order_parse(argv[++i], &desc.order, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
+        } else if (!strcmp(a, "--batch") && next) {
+            char *end;
+            long n = strtol(argv[++i], &end, 10);
+            if (end == argv[i] || *end || n < 1 || n > 1000000)
+                return cli_usage_error("render", "--batch takes 1 to 1000000 hulls, not '%s'",
+                                       argv[i]);
+            desc.batch_hulls = (int)n;
         } else if (!strcmp(a, "--view") && next) {
             if (sc_view_parse(argv[++i], &desc.view, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
@@ -197,8 +223,11 @@ int cmd_render(int argc, char **argv)
     sc_renderer_stats(renderer, &stats);
     double compile_ms = stats.compile_ms + (warm_up > frame_ms ? warm_up - frame_ms : 0);
     printf("stats programs=%d hulls=%d triangles=%d gpu_bytes=%zu compile_ms=%.1f "
-           "frame_ms=%.2f\n",
-           stats.programs, stats.hulls, stats.triangles, stats.gpu_bytes, compile_ms, frame_ms);
+           "frame_ms=%.2f draw_calls=%d program_switches=%d barriers=%d culled_hulls=%d "
+           "readbacks=%d\n",
+           stats.programs, stats.hulls, stats.triangles, stats.gpu_bytes, compile_ms, frame_ms,
+           stats.draw_calls, stats.program_switches, stats.barriers, stats.culled_hulls,
+           stats.readbacks);
     fflush(stdout);
     if (with_ref) {
         sc_refcast *rc = NULL;

@@ -1,0 +1,45 @@
+/* bench.h — what the modes of `splinecast bench` share (cmd_bench.c): one
+ * renderer timed over several frames, its figures, and the line that prints
+ * them. Each mode lives in its own bench_NAME.c. */
+#ifndef SC_BENCH_H
+#define SC_BENCH_H
+
+#include "gl_render.h"
+
+typedef struct bench_result {
+    double frame_ms;        /* median of the timed frames */
+    double mpix_s;          /* covered pixels per second, in millions */
+    double iters_mean;      /* Newton iterations per covered pixel */
+    double compile_ms;      /* programs, plus the warm-up frame's excess */
+    long covered;
+    sc_render_stats stats;
+} bench_result;
+
+/* Builds a renderer, draws a warm-up frame and `frames` timed ones. */
+int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
+              const sc_camera *cam, int frames, bench_result *out, sc_error *err);
+/* One `bench variant=…` line on stdout; `extra` goes after the variant. */
+void bench_print(const char *variant, const char *extra, const bench_result *r);
+
+/* The early-termination / draw-order / batch sweep (bench_order.c). */
+typedef struct bench_sweep {
+    const char *scenes[32];
+    int nscenes;
+    sc_ert_mode erts[4];
+    int nerts;
+    sc_draw_order orders[3];
+    int norders;
+    int batches[16];
+    int nbatches;
+} bench_sweep;
+
+/* "all" or a comma list of names (sc_ert_mode_parse, sc_draw_order_parse),
+ * and a comma list of batch sizes; 0 or the exit status of a usage error. */
+int bench_sweep_parse_erts(const char *text, bench_sweep *sweep);
+int bench_sweep_parse_orders(const char *text, bench_sweep *sweep);
+int bench_sweep_parse_batches(const char *text, bench_sweep *sweep);
+/* Times every scene under every combination; returns the exit status. */
+int bench_sweep_run(const sc_gl *gl, const bench_sweep *sweep, sc_render_desc desc,
+                    const char *camera_arg, int width, int height, int frames);
+
+#endif

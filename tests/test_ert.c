@@ -1,0 +1,327 @@
+/* test_ert.c — early ray termination and draw order (gl_render.h) on real
+ * Mesa: every early-termination mode and every draw-order policy gives the
+ * image of no early termination (fail_pct 0 against it, same surface at
+ * every pixel), on the stacked patches and on the scene of six keys; the
+ * scenes' known answers (the nearest layer everywhere, the CPU reference);
+ * the batch rule (barrier count); hulls holding the eye; the options on the
+ * command line. */
+#include "test.h"
+
+#include <stdlib.h>
+
+#include "gl_context.h"
+#include "gl_render.h"
+#include "imgdiff.h"
+#include "io.h"
+#include "emit_glsl.h"
+#include "refcast.h"
+
+static sc_gl_context *ert_context(const char **why)
+{
+    static sc_gl_context *ctx;
+    static sc_error err;
+    static int tried;
+    if (!tried) {
+        tried = 1;
+        sc_gl_context_desc desc = {0};
+        sc_gl_context_create(&desc, &ctx, &err);
+    }
+    *why = err.message;
+    if (ctx && sc_gl_context_make_current(ctx, &err) != SC_OK)
+        return NULL;
+    return ctx;
+}
+
+static const char *scene_path(const char *name)
+{
+    static char path[4][1024];
+    static int next;
+    char *p = path[next++ % 4];
+    snprintf(p, sizeof path[0], "%s/examples/scenes/%s", test_root_dir, name);
+    return p;
+}
+
+static int render(sc_gl_context *ctx, const sc_scene *scene, const sc_render_desc *desc,
+                  const sc_camera *cam, sc_aov *aov, sc_render_stats *stats)
+{
+    sc_error err = {0};
+    sc_renderer *r;
+    int ok = sc_renderer_create(sc_gl_context_gl(ctx), scene, desc, &r, &err) == SC_OK;
+    if (ok) {
+        ok = sc_renderer_draw(r, cam, &err) == SC_OK &&
+             sc_renderer_read(r, NULL, aov, &err) == SC_OK;
+        sc_renderer_stats(r, stats);
+        sc_renderer_destroy(r);
+    }
+    if (!ok)
+        fprintf(stderr, "  render: %s\n", err.message);
+    return ok;
+}
+
+/* fail_pct 0 against the image without early termination, and the same
+ * surface at every pixel. */
+static int same_image(const sc_aov *none, const sc_aov *test, const char *what)
+{
+    sc_accuracy acc;
+    sc_error err = {0};
+    if (sc_accuracy_compare(none, test, &acc, &err) != SC_OK) {
+        fprintf(stderr, "  %s: %s\n", what, err.message);
+        return 0;
+    }
+    long other_surface = 0;
+    for (int p = 0; p < none->width * none->height; p++)
+        other_surface += none->surface[p] != test->surface[p];
+    if (acc.fail_pct != 0 || other_surface)
+        fprintf(stderr, "  %s: fail_pct %g, %ld pixels on another surface\n", what, acc.fail_pct,
+                other_surface);
+    return acc.fail_pct == 0 && other_surface == 0;
+}
+
+/* Looking down -z at the stack: the nearest layer (surface 0) covers the
+ * whole view. */
+static const sc_camera stack_camera = {.eye = {0, 0, 4.5}, .target = {0, 0, 0},
+                                       .fovy_deg = 22.6, .width = 128, .height = 128};
+
+TEST(ert_modes_stack_same_image)
+{
+    const char *why;
+    sc_gl_context *ctx = ert_context(&why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
+    CHECK_INT(scene.nsurfaces, 16);
+    sc_render_desc desc = {.ert = SC_ERT_NONE};
+    sc_aov none;
+    sc_render_stats stats;
+    CHECK(render(ctx, &scene, &desc, &stack_camera, &none, &stats));
+    CHECK_INT(stats.barriers, 0);
+    int hulls = stats.hulls;
+    long not_nearest = 0;
+    for (int p = 0; p < none.width * none.height; p++)
+        not_nearest += none.surface[p] != 0;
+    CHECK_INT(not_nearest, 0);
+
+    static const struct {
+        sc_ert_mode ert;
+        int batch;
+    } cases[] = {{SC_ERT_CONSERVATIVE, 0}, {SC_ERT_MANUAL, 0},      {SC_ERT_MANUAL, 1},
+                 {SC_ERT_MANUAL, 1000000}, {SC_ERT_MANUAL_BOTH, 0}, {SC_ERT_MANUAL_BOTH, 5}};
+    int ok = 1;
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0] && ok; c++) {
+        for (int order = SC_ORDER_FRONT_TO_BACK; order <= SC_ORDER_HYBRID && ok; order++) {
+            desc = (sc_render_desc){.ert = cases[c].ert, .batch_hulls = cases[c].batch,
+                                    .order = (sc_draw_order)order};
+            sc_aov aov;
+            CHECK(render(ctx, &scene, &desc, &stack_camera, &aov, &stats));
+            char what[96];
+            snprintf(what, sizeof what, "%s batch %d %s", sc_ert_mode_name(cases[c].ert),
+                     cases[c].batch, sc_draw_order_name((sc_draw_order)order));
+            ok = same_image(&none, &aov, what);
+            /* At most one barrier before every batch but the first (no
+             * hull holds the eye), none without the texture. Layer 0 covers
+             * the view and a layer's hulls reach at most 3 layers down (the
+             * bump), so once a batch has drawn the top layers, every hull
+             * more than 4 layers down (plus a tile's margin) is culled. */
+            int batch = cases[c].batch ? cases[c].batch : SC_RENDER_DEFAULT_BATCH_HULLS;
+            int manual = cases[c].ert != SC_ERT_CONSERVATIVE;
+            int most_barriers = manual ? (hulls + batch - 1) / batch - 1 : 0;
+            int per_layer = hulls / 16;
+            int least_culled = manual && batch <= 2 * per_layer ? hulls - 6 * per_layer : 0;
+            if (stats.barriers > most_barriers || stats.culled_hulls < least_culled ||
+                (!manual && stats.culled_hulls)) {
+                fprintf(stderr, "  %s: %d barriers (at most %d), %d hulls culled (at least %d)\n",
+                        what, stats.barriers, most_barriers, stats.culled_hulls, least_culled);
+                ok = 0;
+            }
+            sc_aov_free(&aov);
+        }
+    }
+    sc_aov_free(&none);
+    sc_scene_free(&scene);
+    CHECK(ok);
+}
+
+/* Six keys interleaved in depth: every policy, with and without early
+ * termination, gives the image of by-program order without it, and that
+ * one matches the CPU reference. */
+TEST(ert_orders_mixed_same_image)
+{
+    const char *why;
+    sc_gl_context *ctx = ert_context(&why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const char *path = scene_path("mixed_keys.obj");
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(path, &scene, &err), SC_OK);
+    sc_camera cam = {.eye = {0.3, 0.2, 5}, .target = {0, 0, -0.5}, .fovy_deg = 30,
+                     .width = 128, .height = 128};
+    sc_aov ref, none;
+    CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
+    sc_render_desc desc = {.ert = SC_ERT_NONE, .order = SC_ORDER_BY_PROGRAM};
+    sc_render_stats stats;
+    CHECK(render(ctx, &scene, &desc, &cam, &none, &stats));
+    CHECK_INT(stats.programs, 6);
+    CHECK_INT(stats.program_switches, 6);
+    sc_accuracy acc;
+    CHECK_INT(sc_accuracy_compare(&ref, &none, &acc, &err), SC_OK);
+    sc_aov_free(&ref);
+    CHECK(acc.ref_hits > 128 * 128 * 9 / 10);
+    if (acc.fail_pct > 0.1)
+        fprintf(stderr, "  against the reference: fail_pct %g\n", acc.fail_pct);
+    CHECK(acc.fail_pct <= 0.1);
+
+    int switches[4] = {0};
+    int ok = 1;
+    for (int order = SC_ORDER_FRONT_TO_BACK; order <= SC_ORDER_HYBRID && ok; order++) {
+        desc = (sc_render_desc){.ert = SC_ERT_MANUAL_BOTH, .order = (sc_draw_order)order,
+                                .batch_hulls = 16};
+        sc_aov aov;
+        CHECK(render(ctx, &scene, &desc, &cam, &aov, &stats));
+        ok = same_image(&none, &aov, sc_draw_order_name((sc_draw_order)order));
+        switches[order] = stats.program_switches;
+        sc_aov_free(&aov);
+    }
+    sc_aov_free(&none);
+    sc_scene_free(&scene);
+    CHECK(ok);
+    /* By program: once per program; strictly front to back switches most,
+     * the hybrid at most once per program and bucket. */
+    CHECK_INT(switches[SC_ORDER_BY_PROGRAM], 6);
+    CHECK(switches[SC_ORDER_FRONT_TO_BACK] > switches[SC_ORDER_HYBRID]);
+    CHECK(switches[SC_ORDER_HYBRID] >= 6);
+}
+
+/* The eye inside the (single) hull of the top layer: that hull is drawn by
+ * its back faces with the same key without early termination, and the
+ * image is the reference's. */
+TEST(ert_eye_inside_hull)
+{
+    const char *why;
+    sc_gl_context *ctx = ert_context(&why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const char *path = scene_path("stack_4.obj");
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(path, &scene, &err), SC_OK);
+    /* Above the surface (0.016 there) and below the hull's top (0.03). */
+    sc_camera cam = {.eye = {0.2, 0.1, 0.025}, .target = {0.2, 0.1, -1}, .fovy_deg = 60,
+                     .width = 64, .height = 64};
+    sc_render_desc desc = {.ert = SC_ERT_NONE, .hulls = {.mode = SC_HULL_UNIFORM, .divisions = 1}};
+    sc_aov ref, none, manual;
+    sc_render_stats stats;
+    CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
+    CHECK(render(ctx, &scene, &desc, &cam, &none, &stats));
+    CHECK_INT(stats.programs, 1);
+    desc.ert = SC_ERT_MANUAL;
+    CHECK(render(ctx, &scene, &desc, &cam, &manual, &stats));
+    CHECK_INT(stats.programs, 2);  /* ert1, and ert0 for the hull holding the eye */
+    CHECK_INT(stats.barriers, 1);  /* after the hull holding the eye */
+    sc_accuracy acc;
+    CHECK_INT(sc_accuracy_compare(&ref, &manual, &acc, &err), SC_OK);
+    CHECK_INT(acc.ref_hits, 64 * 64);
+    CHECK(acc.fail_pct <= 0.1);
+    long not_top = 0;
+    for (int p = 0; p < ref.width * ref.height; p++)
+        not_top += ref.surface[p] != 0;
+    CHECK_INT(not_top, 0);
+    int ok = same_image(&none, &manual, "manual, eye inside a hull");
+    sc_aov_free(&ref);
+    sc_aov_free(&none);
+    sc_aov_free(&manual);
+    sc_scene_free(&scene);
+    CHECK(ok);
+}
+
+TEST(ert_names)
+{
+    sc_ert_mode mode;
+    for (int m = SC_ERT_NONE; m <= SC_ERT_MANUAL_BOTH; m++) {
+        CHECK_INT(sc_ert_mode_parse(sc_ert_mode_name((sc_ert_mode)m), &mode, NULL), SC_OK);
+        CHECK_INT(mode, m);
+    }
+    CHECK_STR(sc_ert_mode_name(SC_ERT_MANUAL_BOTH), "manual-both");
+    sc_draw_order order;
+    CHECK_INT(sc_draw_order_parse("by-program", &order, NULL), SC_OK);
+    CHECK_INT(order, SC_ORDER_BY_PROGRAM);
+    CHECK_STR(sc_draw_order_name(SC_ORDER_HYBRID), "hybrid");
+    sc_error err = {0};
+    CHECK_INT(sc_ert_mode_parse("early", &mode, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "unknown early ray termination 'early'");
+    CHECK_INT(sc_draw_order_parse("default", &order, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "front-to-back, by-program or hybrid");
+}
+
+TEST(ert_cli)
+{
+    char cmd[2048], *out = NULL, *err_text = NULL;
+    const char *dir = test_tmpdir();
+    snprintf(cmd, sizeof cmd,
+             "%s render %s -o %s/ert.png --size 32x32 --frames 1 --camera 0,0,4.5,0,0,0,22.6 "
+             "--ert manual-both --order front-to-back --batch 1",
+             test_cli, scene_path("stack_2.obj"), dir);
+    int status = test_run(cmd, &out, &err_text);
+    if (status == 1 && err_text && strstr(err_text, "OSMesa")) {
+        free(out);
+        free(err_text);
+        SKIP("no GL context");
+    }
+    CHECK_INT(status, 0);
+    CHECK_CONTAINS(out, " draw_calls=");
+    CHECK_CONTAINS(out, " program_switches=1 ");
+    free(out);
+    free(err_text);
+
+    snprintf(cmd, sizeof cmd, "%s render %s -o %s/bad.png --ert sometimes", test_cli,
+             scene_path("stack_2.obj"), dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 2);
+    CHECK_CONTAINS(err_text, "unknown early ray termination 'sometimes'");
+    free(out);
+    free(err_text);
+    snprintf(cmd, sizeof cmd, "%s bench --order front,back", test_cli);
+    CHECK_INT(test_run(cmd, &out, &err_text), 2);
+    CHECK_CONTAINS(err_text, "unknown draw order 'front'");
+    free(out);
+    free(err_text);
+    snprintf(cmd, sizeof cmd, "%s bench --batch 0", test_cli);
+    CHECK_INT(test_run(cmd, &out, &err_text), 2);
+    CHECK_CONTAINS(err_text, "--batch takes sizes of 1 to 1000000 hulls, not '0'");
+    free(out);
+    free(err_text);
+    snprintf(cmd, sizeof cmd, "%s bench --help", test_cli);
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    CHECK_CONTAINS(out, "--ert LIST");
+    free(out);
+}
+
+/* What each mode asks of the generated program: ert3 declares
+ * depth_greater and reads no texture; ert1 reads the nearest distance and
+ * leaves before the intersection when the hull lies behind it. */
+TEST(ert_generated_programs)
+{
+    scg_key key;
+    sc_error err = {0};
+    CHECK_INT(scg_key_parse("bez3x3-poly-dc-trim0-newton-cp-it4-tol0.05-ert3-out.shade.aov", &key,
+                            &err),
+              SC_OK);
+    CHECK_INT(key.ert, SCG_ERT_CONSERVATIVE);
+    scg_generated gen;
+    CHECK_INT(scg_generate(&key, &gen, &err), SC_OK);
+    const char *frag = scg_text_str(&gen.fragment);
+    int ok = strstr(frag, "layout(depth_greater) out float gl_FragDepth;") != NULL &&
+             strstr(frag, "sc_nearest_t") == NULL;
+    scg_generated_free(&gen);
+    CHECK(ok);
+    key.ert = SCG_ERT_BEFORE;
+    CHECK_INT(scg_generate(&key, &gen, &err), SC_OK);
+    frag = scg_text_str(&gen.fragment);
+    const char *read = strstr(frag, "texelFetch(sc_nearest_t");
+    const char *leave = strstr(frag, "if (sc_t_limit < 1.0)\n        discard;");
+    const char *call = strstr(frag, "sc_intersect(hit");
+    ok = read && leave && call && read < leave && leave < call && !strstr(frag, "depth_greater");
+    scg_generated_free(&gen);
+    CHECK(ok);
+}
