@@ -107,9 +107,9 @@ static void describe_key(scg_text *out, const scg_key *key)
                     (double)scg_key_tolerance(key), start_words(key->start));
     scg_text_printf(out, "// depth: %s\n// outputs:", ert_words(key->ert));
     static const char *const output_words[] = {"shaded colour", "AOVs", "iterations view",
-                                               "uv view"};
+                                               "uv view", "hull view"};
     const char *sep = " ";
-    for (int bit = 0; bit < 4; bit++)
+    for (int bit = 0; bit < (int)(sizeof output_words / sizeof output_words[0]); bit++)
         if (key->outputs & (1u << bit)) {
             scg_text_printf(out, "%s%s", sep, output_words[bit]);
             sep = ", ";
@@ -513,6 +513,8 @@ static unsigned needed_results(unsigned outputs)
         need |= 1u << SCG_OUT_ITERS;
     if (outputs & SCG_OUTPUT_UVVIEW)
         need |= 1u << SCG_OUT_UV;
+    if (outputs & SCG_OUTPUT_HULLVIEW)
+        need |= 1u << SCG_OUT_NORMAL;
     return need;
 }
 
@@ -543,6 +545,8 @@ static void output_declarations(scg_text *out, unsigned outputs)
         scg_text_printf(out, "layout(location = %d) out vec4 sc_view_iters;\n", SCG_FRAG_OUT_ITERS);
     if (outputs & SCG_OUTPUT_UVVIEW)
         scg_text_printf(out, "layout(location = %d) out vec4 sc_view_uv;\n", SCG_FRAG_OUT_UV);
+    if (outputs & SCG_OUTPUT_HULLVIEW)
+        scg_text_printf(out, "layout(location = %d) out vec4 sc_view_hull;\n", SCG_FRAG_OUT_HULL);
 }
 
 /* The binding and texture that hold, per pixel, the distance along the
@@ -556,7 +560,7 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
     char key_text[SCG_KEY_MAX];
     scg_key_format(key, key_text, sizeof key_text);
     enum { HEADER, INPUTS, COLOUR_INPUT, UNIFORMS, TEXTURES, OUTPUTS, GLOBALS, FUNCTION,
-           FUNCTIONS, PREPARE, RESULTS, CALL, WRITE };
+           FUNCTIONS, PREPARE, RESULTS, CALL, ON_MISS, WRITE };
 
     char stage[96];
     snprintf(stage, sizeof stage, "fragment program, drawn with vertex program %s.vert",
@@ -566,7 +570,10 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
 
     /* The skeleton reads the ray direction itself (depth, normals). */
     for (int s = 0; s < SCG_INPUT_COUNT; s++) {
-        if (s == SCG_IN_T_LIMIT || (!use->inputs[s] && s != SCG_IN_RAY_DIR))
+        /* The hull view colours by the hull's record and domain. */
+        int hull_id = (key->outputs & SCG_OUTPUT_HULLVIEW) &&
+                      (s == SCG_IN_DOMAIN || s == SCG_IN_RECORD);
+        if (s == SCG_IN_T_LIMIT || (!use->inputs[s] && s != SCG_IN_RAY_DIR && !hull_id))
             continue;
         const scg_slot_info *info = scg_input_info((scg_input_slot)s);
         scg_text_printf(&parts[INPUTS], "layout(location = %d) %sin %s %s;\n", s,
@@ -636,18 +643,19 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
         }
     scg_text_append(&parts[CALL], ");\n");
 
-    if (key->outputs & (SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV)) {
+    if (key->outputs & (SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | SCG_OUTPUT_HULLVIEW)) {
         scg_text_append(&parts[WRITE], "\n");
         if (scg_template_expand(&parts[WRITE], "view_facing_normal.glsl", NULL, 0, err) != SC_OK)
             return SC_FAIL;
     }
-    if (key->outputs & SCG_OUTPUT_SHADE) {
-        if (scg_template_expand(&parts[FUNCTIONS], "shade_headlight.glsl", NULL, 0, err) !=
-                SC_OK ||
-            scg_template_expand(&parts[WRITE], "view_shade.glsl", NULL, 0, err) != SC_OK)
+    if (key->outputs & (SCG_OUTPUT_SHADE | SCG_OUTPUT_HULLVIEW)) {
+        if (scg_template_expand(&parts[FUNCTIONS], "shade_headlight.glsl", NULL, 0, err) != SC_OK)
             return SC_FAIL;
         scg_text_append(&parts[FUNCTIONS], "\n");
     }
+    if (key->outputs & SCG_OUTPUT_SHADE &&
+        scg_template_expand(&parts[WRITE], "view_shade.glsl", NULL, 0, err) != SC_OK)
+        return SC_FAIL;
     if (key->outputs & SCG_OUTPUT_AOV &&
         scg_template_expand(&parts[WRITE], "view_aov.glsl", NULL, 0, err) != SC_OK)
         return SC_FAIL;
@@ -662,7 +670,30 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
     if (key->outputs & SCG_OUTPUT_UVVIEW &&
         scg_template_expand(&parts[WRITE], "view_uv.glsl", NULL, 0, err) != SC_OK)
         return SC_FAIL;
-    return SC_OK;
+    if (!(key->outputs & SCG_OUTPUT_HULLVIEW)) {
+        scg_text_append(&parts[ON_MISS], "if (!hit)\n    discard;\n");
+        return SC_OK;
+    }
+    /* A miss still writes every declared output: the surface id marks it as
+     * one, the rest is defined. */
+    scg_text clear = {0};
+    if (key->outputs & SCG_OUTPUT_SHADE)
+        scg_text_append(&clear, "sc_colour = vec4(0.0);\n");
+    if (key->outputs & SCG_OUTPUT_AOV)
+        scg_text_append(&clear, "sc_aov_surface = -1;\nsc_aov_uvt = vec4(0.0);\n"
+                                "sc_aov_point = vec4(0.0);\nsc_aov_normal = vec4(0.0);\n");
+    if (key->outputs & SCG_OUTPUT_ITERS)
+        scg_text_append(&clear, "sc_view_iters = vec4(0.0);\n");
+    if (key->outputs & SCG_OUTPUT_UVVIEW)
+        scg_text_append(&clear, "sc_view_uv = vec4(0.0);\n");
+    scg_slot slot = {"CLEAR_OUTPUTS", scg_text_str(&clear)};
+    int status = scg_template_expand(&parts[FUNCTIONS], "hull_colour.glsl", NULL, 0, err);
+    if (status == SC_OK)
+        status = scg_template_expand(&parts[ON_MISS], "view_hull_miss.glsl", &slot, 1, err);
+    if (status == SC_OK)
+        status = scg_template_expand(&parts[WRITE], "view_hull.glsl", NULL, 0, err);
+    scg_text_free(&clear);
+    return status;
 }
 
 int scg_emit_fragment(const scg_program *prog, scg_text *out, sc_error *err)
@@ -670,7 +701,7 @@ int scg_emit_fragment(const scg_program *prog, scg_text *out, sc_error *err)
     static const char *const slot_names[] = {"HEADER", "INPUTS", "COLOUR_INPUT", "UNIFORMS",
                                              "TEXTURES", "OUTPUTS", "GLOBALS",
                                              "INTERSECT_FUNCTION", "FUNCTIONS", "PREPARE",
-                                             "RESULTS", "CALL", "WRITE_OUTPUTS"};
+                                             "RESULTS", "CALL", "ON_MISS", "WRITE_OUTPUTS"};
     enum { NSLOTS = sizeof slot_names / sizeof slot_names[0] };
     program_use use;
     scan_use(prog, &use);

@@ -28,7 +28,8 @@ enum {
     SCG_FRAG_OUT_NORMAL = 4,    /* vec4 sc_aov_normal: world normal facing the
                                    viewer, 0 */
     SCG_FRAG_OUT_ITERS = 5,     /* vec4 sc_view_iters (iters debug view) */
-    SCG_FRAG_OUT_UV = 6         /* vec4 sc_view_uv (uv debug view) */
+    SCG_FRAG_OUT_UV = 6,        /* vec4 sc_view_uv (uv debug view) */
+    SCG_FRAG_OUT_HULL = 7       /* vec4 sc_view_hull (hull debug view) */
 };
 
 /* Name of the vertex program a key's fragment program pairs with

@@ -15,7 +15,7 @@ static const char *const trim_names[] = {"trim", "clip", "fast", "left"};
 static const char *const method_names[] = {"newton", "broyden", "bclip", "subdiv",
                                            "hybrid"};
 static const char *const start_names[] = {"mid", "cp", "view"};
-static const char *const output_names[] = {"shade", "aov", "iters", "uv"};
+static const char *const output_names[] = {"shade", "aov", "iters", "uv", "hull"};
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
@@ -27,9 +27,9 @@ void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v)
     key->deg_v = deg_v;
     key->eval = SCG_EVAL_DC;
     key->method = SCG_METHOD_NEWTON;
-    key->start = SCG_START_MID;
-    key->max_iters = 4;
-    key->tol_milli = 250;
+    key->start = SCG_DEFAULT_START;
+    key->max_iters = SCG_DEFAULT_ITERS;
+    key->tol_milli = SCG_DEFAULT_TOL_MILLI;
     key->ert = SCG_ERT_NONE;
     key->outputs = SCG_OUTPUT_SHADE;
 }
@@ -270,7 +270,7 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
         return field_error(err, text, 8, fields[8], "ert0, ert1, ert2 or ert3");
     k.ert = (scg_ert)ert;
     if (strncmp(fields[9], "out.", 4) != 0)
-        return field_error(err, text, 9, fields[9], "out. followed by shade, aov, iters, uv");
+        return field_error(err, text, 9, fields[9], "out. followed by shade, aov, iters, uv, hull");
     for (const char *o = fields[9] + 3; *o == '.';) {
         o++;
         size_t len = strcspn(o, ".");
@@ -280,7 +280,7 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
                 bit = i;
         if (bit < 0)
             return field_error(err, text, 9, fields[9],
-                               "out. followed by shade, aov, iters, uv joined by '.'");
+                               "out. followed by shade, aov, iters, uv, hull joined by '.'");
         k.outputs |= 1u << bit;
         o += len;
     }

@@ -83,7 +83,10 @@ enum {
     SCG_OUTPUT_AOV = 1 << 1,     /* "aov": depth, uv, surface id, normal… */
     SCG_OUTPUT_ITERS = 1 << 2,   /* "iters": iteration-count debug view */
     SCG_OUTPUT_UVVIEW = 1 << 3,  /* "uv": (u, v) debug colour */
-    SCG_OUTPUT_ALL = (1 << 4) - 1
+    SCG_OUTPUT_HULLVIEW = 1 << 4, /* "hull": proxy-hull debug colour; a miss
+                                    draws the hull's face instead of
+                                    discarding */
+    SCG_OUTPUT_ALL = (1 << 5) - 1
 };
 
 typedef struct scg_key {
@@ -102,9 +105,16 @@ typedef struct scg_key {
     unsigned outputs;         /* SCG_OUTPUT_* bits, at least one */
 } scg_key;
 
+/* Defaults of the fields that tune Newton's method, the ones the renderer
+ * draws with (measured on the tea set, docs/speed.md): from the
+ * control-point parameters, at most 6 iterations, 0.05 pixel footprints. */
+#define SCG_DEFAULT_START SCG_START_CP
+#define SCG_DEFAULT_ITERS 6
+#define SCG_DEFAULT_TOL_MILLI 50
+
 /* The default key for a degree pair: polynomial, de Casteljau, untrimmed,
- * Newton from the midpoint, 4 iterations, 0.25 px, no early ray
- * termination, shaded output. */
+ * Newton with the defaults above, no early ray termination, shaded
+ * output. */
 void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v);
 
 /* Canonical text into buf (SCG_KEY_MAX bytes are always enough). */

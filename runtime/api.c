@@ -29,7 +29,8 @@ _Static_assert(SC_KEY_SIZE == SCG_KEY_MAX, "public and internal key sizes differ
 _Static_assert((int)SC_OUTPUT_SHADE == (int)SCG_OUTPUT_SHADE &&
                    (int)SC_OUTPUT_AOV == (int)SCG_OUTPUT_AOV &&
                    (int)SC_OUTPUT_ITERS == (int)SCG_OUTPUT_ITERS &&
-                   (int)SC_OUTPUT_UV == (int)SCG_OUTPUT_UVVIEW,
+                   (int)SC_OUTPUT_UV == (int)SCG_OUTPUT_UVVIEW &&
+                   (int)SC_OUTPUT_HULL == (int)SCG_OUTPUT_HULLVIEW,
                "public output bits are the key's output bits");
 _Static_assert(sizeof(((sc_shader_audit *)0)->line) >= SCG_KEY_MAX + 100,
                "an audit line holds a key and its figures");
@@ -353,7 +354,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     if (check_int(desc->generic_above, 0, SCG_MAX_DEGREE, "sc_keys_desc.generic_above", err) ||
         check_int(desc->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_keys_desc.trim_iters", err) ||
         check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_keys_desc.max_iters", err) ||
-        check_int(desc->ert, 0, SCG_ERT_BOTH, "sc_keys_desc.ert", err) ||
+        check_int(desc->ert, 0, SCG_ERT_CONSERVATIVE, "sc_keys_desc.ert", err) ||
         check_enum(desc->start, SC_START_CPMAP + 1, "sc_keys_desc.start", err) ||
         trim_mode(desc->trim, "sc_keys_desc.trim", &opts->trim_method, err) ||
         check_tolerance(desc->tolerance_px, "sc_keys_desc.tolerance_px", &opts->tol_milli, err))
@@ -366,7 +367,8 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->ignore_trims = desc->ignore_trims != 0;
     opts->trim_iters = desc->trim_iters;
     opts->max_iters = desc->max_iters;
-    opts->start = desc->start == SC_START_CPMAP ? SCG_START_CP : SCG_START_MID;
+    opts->start_set = desc->start != SC_START_DEFAULT;
+    opts->start = desc->start == SC_START_MID ? SCG_START_MID : SCG_START_CP;
     opts->ert = (scg_ert)desc->ert;
     opts->outputs = desc->outputs;
     return SC_OK;
@@ -606,7 +608,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
         check_enum(d->start, SC_START_CPMAP + 1, "sc_renderer_desc.start", err) ||
         check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
-        check_enum(d->show, SC_SHOW_DEPTH + 1, "sc_renderer_desc.show", err) ||
+        check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
         check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
                   err) ||
         trim_mode(d->trim, "sc_renderer_desc.trim", &r->trim_method, err) ||
@@ -628,7 +630,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     static const sc_view views[] = {
         [SC_SHOW_SHADE] = SC_VIEW_SHADE, [SC_SHOW_UV] = SC_VIEW_UV,
         [SC_SHOW_ITERS] = SC_VIEW_ITERS, [SC_SHOW_NORMAL] = SC_VIEW_NORMAL,
-        [SC_SHOW_DEPTH] = SC_VIEW_DEPTH};
+        [SC_SHOW_DEPTH] = SC_VIEW_DEPTH, [SC_SHOW_HULL] = SC_VIEW_HULL};
     r->view = views[d->show];
     r->generic = d->generic != 0;
     r->unroll_max_degree = d->unroll_max_degree;

@@ -98,13 +98,13 @@ struct sc_renderer {
 
 int sc_view_parse(const char *text, sc_view *view, sc_error *err)
 {
-    static const char *const names[] = {"shade", "uv", "iters", "normal", "depth"};
-    for (int i = 0; i < 5; i++)
+    static const char *const names[] = {"shade", "uv", "iters", "normal", "depth", "hull"};
+    for (int i = 0; i < 6; i++)
         if (!strcmp(text, names[i])) {
             *view = (sc_view)i;
             return SC_OK;
         }
-    return sc_fail(err, NULL, 0, "unknown view '%s' (shade, uv, iters, normal or depth)", text);
+    return sc_fail(err, NULL, 0, "unknown view '%s' (shade, uv, iters, normal, depth or hull)", text);
 }
 
 int sc_trim_method_parse(const char *text, scg_trim_mode *mode, int *iters, sc_error *err)
@@ -188,17 +188,18 @@ static int manual_ert(sc_ert_mode mode)
 static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key)
 {
     sc_key_options opts = {
-        .generic_above =
-            desc->unroll_max_degree > 0 ? desc->unroll_max_degree : SC_UNROLL_MAX_DEGREE,
-        .max_iters = desc->max_iters > 0 ? desc->max_iters : SC_RENDER_DEFAULT_ITERS,
-        .tol_milli = desc->tol_milli > 0 ? desc->tol_milli : SC_RENDER_DEFAULT_TOL_MILLI,
-        .start = desc->start_set ? desc->start : SCG_START_CP,
+        .generic_above = desc->unroll_max_degree,
+        .max_iters = desc->max_iters,
+        .tol_milli = desc->tol_milli,
+        .start_set = desc->start_set,
+        .start = desc->start,
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
         .ert = key_ert(desc->ert),
         .outputs = SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV |
                    (desc->view == SC_VIEW_ITERS ? SCG_OUTPUT_ITERS : 0) |
-                   (desc->view == SC_VIEW_UV ? SCG_OUTPUT_UVVIEW : 0),
+                   (desc->view == SC_VIEW_UV ? SCG_OUTPUT_UVVIEW : 0) |
+                   (desc->view == SC_VIEW_HULL ? SCG_OUTPUT_HULLVIEW : 0),
     };
     sc_surface_key(s, &opts, key);
     if (desc->generic && key->eval != SCG_EVAL_LOOP) {
@@ -335,6 +336,9 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     r->desc = desc ? *desc : defaults;
     if (!r->desc.ert)
         r->desc.ert = SC_RENDER_DEFAULT_ERT;
+    /* Hull faces drawn where a ray misses would read as hits nearby. */
+    if (r->desc.view == SC_VIEW_HULL)
+        r->desc.ert = SC_ERT_NONE;
     if (!r->desc.order)
         r->desc.order = SC_RENDER_DEFAULT_ORDER;
     if (r->desc.batch_hulls <= 0)
@@ -416,6 +420,8 @@ static void target_formats(sc_view view, GLenum formats[SC_GL_TARGET_MAX_COLOURS
         formats[SCG_FRAG_OUT_ITERS] = GL_RGBA8;
     if (view == SC_VIEW_UV)
         formats[SCG_FRAG_OUT_UV] = GL_RGBA8;
+    if (view == SC_VIEW_HULL)
+        formats[SCG_FRAG_OUT_HULL] = GL_SRGB8_ALPHA8;
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -717,6 +723,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{bg, bg, bg, 1}, {-1, -1, -1, -1}};
     /* uvt.z is the distance to the nearest surface so far: far away. */
     clear[SCG_FRAG_OUT_UVT][2] = 3.0e38f;
+    for (int c = 0; c < 4; c++)
+        clear[SCG_FRAG_OUT_HULL][c] = clear[SCG_FRAG_OUT_COLOUR][c];
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear);
@@ -864,6 +872,9 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
             break;
         case SC_VIEW_ITERS:
             status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_ITERS, img, err);
+            break;
+        case SC_VIEW_HULL:
+            status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_HULL, img, err);
             break;
         case SC_VIEW_NORMAL:
         case SC_VIEW_DEPTH:

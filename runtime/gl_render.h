@@ -13,14 +13,17 @@
 #include "image.h"
 #include "key.h"
 
-/* What the image shows. shade, uv and iters come from the programs; normal
- * and depth are drawn from the AOVs. */
+/* What the image shows. shade, uv, iters and hull come from the programs;
+ * normal and depth are drawn from the AOVs. hull draws every proxy hull in a
+ * colour of its own: the surface inside it lit, the rest of its face dim (its
+ * AOVs then hold only the hits no nearer hull face hides). */
 typedef enum sc_view {
     SC_VIEW_SHADE = 0,
     SC_VIEW_UV,
     SC_VIEW_ITERS,
     SC_VIEW_NORMAL,
     SC_VIEW_DEPTH,
+    SC_VIEW_HULL,
 } sc_view;
 
 int sc_view_parse(const char *text, sc_view *view, sc_error *err);
@@ -61,14 +64,14 @@ typedef struct sc_render_desc {
     sc_hull_desc hulls;     /* proxy hulls (hulls.h defaults) */
     scg_start start;        /* SCG_START_MID or SCG_START_CP (default) */
     int start_set;          /* 1 when `start` was chosen (0 picks the default) */
-    int max_iters;          /* Newton iterations (SC_RENDER_DEFAULT_ITERS) */
+    int max_iters;          /* Newton iterations (SCG_DEFAULT_ITERS, key.h) */
     int tol_milli;          /* tolerance in 1/1000 pixel footprints
-                               (SC_RENDER_DEFAULT_TOL_MILLI) */
+                               (SCG_DEFAULT_TOL_MILLI) */
     sc_view view;
     int generic;            /* the generic program (runtime loops) for every
                                surface, whatever its degree */
     int unroll_max_degree;  /* highest degree drawn with unrolled programs
-                               (SC_UNROLL_MAX_DEGREE, programs.h) */
+                               (SC_UNROLL_MAX_DEGREE, scene_keys.h) */
     scg_trim_mode trim_method; /* trim method of trimmed surfaces: SCG_TRIM_FAST
                                (default), SCG_TRIM_CLIP or SCG_TRIM_LEFT */
     int trim_iters;         /* cap on clipping iterations per trim crossing
@@ -81,8 +84,6 @@ typedef struct sc_render_desc {
                                hybrid order (SC_RENDER_DEFAULT_BATCH_HULLS) */
 } sc_render_desc;
 
-#define SC_RENDER_DEFAULT_ITERS 6
-#define SC_RENDER_DEFAULT_TOL_MILLI 50
 /* Chosen by measurement (docs/speed.md, `splinecast bench --ert`, `--order`). */
 #define SC_RENDER_DEFAULT_ERT SC_ERT_MANUAL
 #define SC_RENDER_DEFAULT_ORDER SC_ORDER_HYBRID

@@ -35,12 +35,4 @@ int sc_program_count(const sc_program_cache *cache);
 void sc_program_times(const sc_program_cache *cache, sc_program program, double *gen_ms,
                       double *gl_ms);
 
-/* Highest degree (in either direction) drawn with the unrolled program.
- * Measured (docs/speed.md, `splinecast bench --degrees 3-9`): the unrolled
- * program runs 5.5-21x faster than the generic one at every degree, and
- * compiles faster up to 9x9 (2.1 s against 2.3 s); above that its compile
- * time keeps growing while the generic one's stays flat, so the generic
- * program takes over. */
-#define SC_UNROLL_MAX_DEGREE 9
-
 #endif

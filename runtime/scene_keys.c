@@ -10,8 +10,6 @@
 #include "scene_keys.h"
 #include "trim_pack.h"
 
-enum { DEFAULT_GENERIC_ABOVE = 7 };
-
 void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key)
 {
     sc_key_options defaults;
@@ -21,7 +19,7 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
     bool one_patch = s->nu == s->deg_u + 1 && s->nv == s->deg_v + 1;
     scg_patch_kind kind = opts->nurbs_direct && !one_patch ? SCG_PATCH_NURBS : SCG_PATCH_BEZIER;
     scg_key_default(key, kind, s->deg_u, s->deg_v);
-    int generic_above = opts->generic_above > 0 ? opts->generic_above : DEFAULT_GENERIC_ABOVE;
+    int generic_above = opts->generic_above > 0 ? opts->generic_above : SC_UNROLL_MAX_DEGREE;
     if (s->deg_u > generic_above || s->deg_v > generic_above) {
         key->eval = SCG_EVAL_LOOP;
         key->deg_u = key->deg_v = 0;
@@ -37,7 +35,8 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->max_iters = opts->max_iters;
     if (opts->tol_milli > 0)
         key->tol_milli = opts->tol_milli;
-    key->start = opts->start;
+    if (opts->start_set)
+        key->start = opts->start;
     key->ert = opts->ert;
     if (opts->outputs)
         key->outputs = opts->outputs;

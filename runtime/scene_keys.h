@@ -7,13 +7,21 @@
 #include "key.h"
 #include "scene.h"
 
+/* Highest degree (in either direction) drawn with the unrolled program.
+ * Measured (docs/speed.md, `splinecast bench --degrees 3-9`): the unrolled
+ * program runs 5.5-21x faster than the generic one at every degree, and
+ * compiles faster up to 9x9 (2.1 s against 2.3 s); above that its compile
+ * time keeps growing while the generic one's stays flat, so the generic
+ * program takes over. */
+#define SC_UNROLL_MAX_DEGREE 9
+
 typedef struct sc_key_options {
     /* 0 (default): surfaces are drawn as extracted Bézier patches (`bez`
      * keys); 1: whole NURBS surfaces with de Boor from the knot texture
      * (`nurbs` keys). A surface that is one Bézier patch is `bez` either way. */
     int nurbs_direct;
     /* Surfaces with a degree above this use the generic program (`loop`,
-     * degrees `dyn`); 0 means the default, 7. */
+     * degrees `dyn`); 0 means SC_UNROLL_MAX_DEGREE. */
     int generic_above;
     /* 1: ignore trim loops (keys say trim0). Default 0: a trimmed surface
      * asks for trimming with its highest trim-curve degree. */
@@ -25,9 +33,10 @@ typedef struct sc_key_options {
     scg_trim_mode trim_method;
     int trim_iters;
     /* The remaining fields are copied into every key; 0 means the default
-     * of scg_key_default (it4, tol0.25, mid, ert0, out.shade). */
+     * of scg_key_default (key.h: cp, it6, tol0.05, ert0, out.shade). */
     int max_iters;
     int tol_milli;
+    bool start_set;           /* false: SCG_DEFAULT_START */
     scg_start start;
     scg_ert ert;
     unsigned outputs;

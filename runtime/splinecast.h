@@ -114,7 +114,7 @@ int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);
 typedef struct sc_key { char text[SC_KEY_SIZE]; } sc_key;
 
 typedef enum sc_start {
-    SC_START_DEFAULT = 0,  /* sc_keys_desc: mid; sc_renderer_desc: cpmap */
+    SC_START_DEFAULT = 0,  /* cpmap */
     SC_START_MID,          /* Newton starts at the middle of the sub-patch */
     SC_START_CPMAP         /* at the control-point parameters interpolated
                               over the hull */
@@ -132,7 +132,8 @@ enum {
     SC_OUTPUT_SHADE = 1 << 0,  /* shaded colour */
     SC_OUTPUT_AOV = 1 << 1,    /* surface id, (u, v), distance, point, normal */
     SC_OUTPUT_ITERS = 1 << 2,  /* iteration-count view */
-    SC_OUTPUT_UV = 1 << 3      /* (u, v) view */
+    SC_OUTPUT_UV = 1 << 3,     /* (u, v) view */
+    SC_OUTPUT_HULL = 1 << 4    /* proxy-hull view */
 };
 
 /* The options `splinecast gen` and `info` take. Zero means default. */
@@ -140,16 +141,17 @@ typedef struct sc_keys_desc {
     int nurbs_direct;          /* 1: whole NURBS surfaces with de Boor (nurbs
                                   keys) instead of extracted Bézier patches */
     int generic_above;         /* degrees above this use the generic program
-                                  with runtime loops (default 7) */
+                                  with runtime loops (default 9) */
     int ignore_trims;          /* 1: trim loops are ignored (trim0) */
     sc_trim_method trim;
     int trim_iters;            /* clipping iterations per crossing (16) */
-    int max_iters;             /* Newton iterations (4) */
-    double tolerance_px;       /* Newton tolerance in pixel footprints (0.25) */
+    int max_iters;             /* Newton iterations (6) */
+    double tolerance_px;       /* Newton tolerance in pixel footprints (0.05) */
     sc_start start;
     int ert;                   /* early ray termination in the program: 0 none,
                                   1 skip a ray behind the nearest hit so far,
-                                  2 also drop a hit behind it */
+                                  2 also drop a hit behind it, 3 conservative
+                                  depth (layout(depth_greater)) */
     unsigned outputs;          /* SC_OUTPUT_* bits (SC_OUTPUT_SHADE) */
 } sc_keys_desc;
 
@@ -242,7 +244,10 @@ typedef enum sc_show {
     SC_SHOW_UV,                /* (u, v) as colour */
     SC_SHOW_ITERS,             /* iteration count */
     SC_SHOW_NORMAL,            /* normal as colour */
-    SC_SHOW_DEPTH              /* distance as grey */
+    SC_SHOW_DEPTH,             /* distance as grey */
+    SC_SHOW_HULL               /* each proxy hull in a colour of its own: the
+                                  surface inside it lit, the rest of its face
+                                  dim (early termination off) */
 } sc_show;
 
 typedef enum sc_hull_split {

@@ -25,8 +25,7 @@ void main()
     {{PREPARE}}
     {{RESULTS}}
     {{CALL}}
-    if (!hit)
-        discard;
+    {{ON_MISS}}
 
     // Depth of the hit, not of the hull: hulls overlap where surfaces do not.
     // The depth range is the default [0, 1] (gl_DepthRange is not in SPIR-V).

@@ -130,14 +130,14 @@ TEST(audit_register_bound_of_the_paper)
 TEST(audit_line_format_and_parse)
 {
     scg_audit_line line = {0}, back;
-    snprintf(line.key, sizeof line.key, "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
+    snprintf(line.key, sizeof line.key, "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
     line.stage = SCG_STAGE_FRAGMENT;
     long values[] = {1055, 5952, 69, 18, 35850};
     memcpy(line.value, values, sizeof values);
     line.register_bound = 12;
     char text[512];
     scg_audit_format(&line, text, sizeof text);
-    CHECK_STR(text, "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade - FS: 1055 inst, "
+    CHECK_STR(text, "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade - FS: 1055 inst, "
                     "5952 spirv-inst, 69 vec4-regs (bound 12), 18 tex, 35850 bytes");
     sc_error err = {0};
     CHECK_INT(scg_audit_parse(text, &back, &err), SC_OK);
@@ -225,11 +225,11 @@ TEST(audit_command)
     CHECK_CONTAINS(out, "usage: splinecast audit");
     free(out);
 
-    const char *bicubic = "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade";
-    const char *septic = "bez7x7-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade";
+    const char *bicubic = "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade";
+    const char *septic = "bez7x7-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade";
     snprintf(cmd, sizeof cmd, "%s audit -v --key %s %s", test_cli, bicubic, septic);
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_CONTAINS(out, "\n  bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade - FS by kind: ");
+    CHECK_CONTAINS(out, "\n  bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade - FS by kind: ");
     char path[512];
     snprintf(path, sizeof path, "%s", test_write_tmp("old.audit", out));
     free(out);
@@ -243,7 +243,7 @@ TEST(audit_command)
     CHECK_STR(lines[0].key, bicubic);
     CHECK_INT(lines[0].register_bound, 12);
     CHECK_INT(lines[1].stage, SCG_STAGE_VERTEX);
-    CHECK_STR(lines[1].key, "hull-mid-colour");
+    CHECK_STR(lines[1].key, "hull-cp-colour");
     CHECK_STR(lines[2].key, septic);
     CHECK_INT(lines[2].register_bound, 24);
     /* The unrolled 7x7 program reads 64 control points, the 3x3 one 16;
@@ -279,8 +279,8 @@ TEST(audit_scene)
     char cmd[512], *out = NULL;
     snprintf(cmd, sizeof cmd, "%s audit --scene teapot", test_cli);
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade - FS: ");
-    CHECK_CONTAINS(out, "hull-mid-colour - VS: 0 inst, ");
+    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade - FS: ");
+    CHECK_CONTAINS(out, "hull-cp-colour - VS: 0 inst, ");
     int lines = 0;
     for (const char *p = out; *p; p++)
         lines += *p == '\n';

@@ -428,6 +428,73 @@ TEST(gl_render_distinct_keys)
     CHECK_INT(seen[0] + seen[1] + seen[2] + seen[3] + seen[4], 5);
 }
 
+/* Renders one view of a bicubic bump cut into 2 × 2 hulls. */
+static int render_view(const sc_gl *gl, const sc_scene *scene, sc_view view,
+                       const sc_camera *cam, sc_image *img, sc_aov *aov)
+{
+    sc_render_desc desc = {.view = view, .hulls = {.mode = SC_HULL_UNIFORM, .divisions = 2}};
+    sc_renderer *r;
+    sc_error err = {0};
+    if (sc_renderer_create(gl, scene, &desc, &r, &err) != SC_OK)
+        return 0;
+    int ok = sc_renderer_draw(r, cam, &err) == SC_OK &&
+             sc_renderer_read(r, img, aov, &err) == SC_OK;
+    sc_renderer_destroy(r);
+    return ok;
+}
+
+/* The hull view shows every proxy hull: it covers every pixel the surface
+ * does and more (hulls enclose a curved patch with slack), and the four
+ * hulls of the patch show in different colours. */
+TEST(gl_render_hull_view)
+{
+    const char *why;
+    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_scene_init(&scene);
+    add_patch(&scene, 3, 3, 0.0, 0);
+    sc_camera cam = {.eye = {0.5, -0.4, 0.9}, .target = {0.5, 0.5, 0}, .fovy_deg = 60,
+                     .width = 96, .height = 96};
+    const sc_gl *gl = sc_gl_context_gl(ctx);
+    sc_image shade = {0}, hull = {0};
+    sc_aov aov;
+    CHECK(render_view(gl, &scene, SC_VIEW_HULL, &cam, &hull, NULL));
+    CHECK(render_view(gl, &scene, SC_VIEW_SHADE, &cam, &shade, &aov));
+    sc_scene_free(&scene);
+    if (!hull.pixels || !shade.pixels)
+        return;
+    /* The background, sRGB 0.2, reads back as 51 in every channel. */
+    int surface = 0, hull_only = 0, surface_outside_hull = 0;
+    enum { HUES = 64 };
+    int hue_count[HUES] = {0};
+    for (int p = 0; p < 96 * 96; p++) {
+        const unsigned char *c = hull.pixels + p * hull.channels;
+        int background = c[0] == 51 && c[1] == 51 && c[2] == 51;
+        if (aov.surface[p] >= 0) {
+            surface++;
+            surface_outside_hull += background;
+            /* Lighting scales a hull's colour: its direction is the hull's. */
+            int m = c[0] > c[1] ? (c[0] > c[2] ? c[0] : c[2]) : (c[1] > c[2] ? c[1] : c[2]);
+            if (m > 0)
+                hue_count[(c[0] * 3 / (m + 1)) * 16 + (c[1] * 3 / (m + 1)) * 4 +
+                          c[2] * 3 / (m + 1)]++;
+        } else
+            hull_only += !background;
+    }
+    int hues = 0;
+    for (int h = 0; h < HUES; h++)
+        hues += hue_count[h] > surface / 50;
+    sc_image_free(&hull);
+    sc_image_free(&shade);
+    sc_aov_free(&aov);
+    CHECK(surface > 96 * 96 / 8);
+    CHECK_INT(surface_outside_hull, 0);
+    CHECK(hull_only > 0);
+    CHECK(hues >= 3);
+}
+
 /* A 12×12 surface (real CAD data has them) goes through an OBJ file, is
  * drawn with the generic program and matches the reference. */
 TEST(gl_render_degree12_generic)

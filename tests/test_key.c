@@ -14,7 +14,7 @@ TEST(key_default_text)
     char buf[SCG_KEY_MAX];
     scg_key_default(&k, SCG_PATCH_BEZIER, 3, 3);
     CHECK_STR(scg_key_format(&k, buf, sizeof buf),
-              "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
+              "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
     scg_key back;
     sc_error err;
     CHECK_INT(scg_key_parse(buf, &back, &err), SC_OK);
@@ -81,7 +81,7 @@ TEST(key_noncanonical_refused)
     static const struct { const char *text, *canonical; } cases[] = {
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.250-ert0-out.shade", "'tol0.25'"},
         {"bez3x3-poly-dc-trim0-newton-mid-it04-tol0.25-ert0-out.shade", "'it4'"},
-        {"bez03x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "'bez3x3'"},
+        {"bez03x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "'bez3x3'"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1.0-ert0-out.shade", "'tol1'"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.aov.shade", "'out.shade.aov'"},
     };
@@ -100,18 +100,18 @@ TEST(key_malformed_refused)
     static const struct { const char *text, *says; } cases[] = {
         {"", "expected"},
         {"bez3x3-poly", "fields"},
-        {"Bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "character 'B'"},
+        {"Bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "character 'B'"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade-x", "too many"},
-        {"bez17x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "degrees from 1 to 16"},
-        {"bez3x3-half-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "poly or rat"},
+        {"bez17x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "degrees from 1 to 16"},
+        {"bez3x3-half-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "poly or rat"},
         {"bez3x3-poly-dc-trim0-secant-mid-it4-tol0.25-ert0-out.shade", "method"},
         {"bez3x3-poly-dc-trim0-newton-mid-it0-tol0.25-ert0-out.shade", "from 1 to 64"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0-ert0-out.shade", "tolerance"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.0005-ert0-out.shade", "at most 3 decimals"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert4-out.shade", "ert0, ert1, ert2 or ert3"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.", "outputs"},
-        {"bez3x3-poly-loop-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "dyn"},
-        {"bezdyn-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "dyn"},
+        {"bez3x3-poly-loop-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},
+        {"bezdyn-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         scg_key k;
@@ -125,7 +125,7 @@ TEST(key_malformed_refused)
 TEST(key_reserved_refused)
 {
     static const struct { const char *text, *says; } cases[] = {
-        {"tri3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "triangular"},
+        {"tri3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "triangular"},
         {"bez3x3-poly-dc-trim0-broyden-mid-it4-tol0.25-ert0-out.shade", "Broyden"},
         {"bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade", "Bézier clipping (bclip)"},
         {"bez3x3-poly-dc-trim0-subdiv-mid-it4-tol0.25-ert0-out.shade", "subdivision"},
@@ -161,9 +161,9 @@ TEST(key_scene_keys)
     sc_error err;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 3);
-    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
-    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
-    CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
+    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
+    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
+    CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
     free(keys);
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
@@ -172,8 +172,8 @@ TEST(key_scene_keys)
     opts.generic_above = 12;
     CHECK_INT(sc_scene_keys(&scene, &opts, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 4);
-    CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-newton-mid-it8-tol0.25-ert0-out.shade");
-    CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-newton-mid-it8-tol0.25-ert0-out.shade");
+    CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-newton-cp-it8-tol0.05-ert0-out.shade");
+    CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-newton-cp-it8-tol0.05-ert0-out.shade");
     free(keys);
     sc_scene_free(&scene);
 }
@@ -190,7 +190,7 @@ TEST(key_scene_keys_teapot)
     int count;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
+    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
     free(keys);
     sc_scene_free(&scene);
 }

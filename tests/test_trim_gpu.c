@@ -354,7 +354,7 @@ static int probe_open(probe *p, const char *trim_field, const sc_surface *s, sc_
     char text[SCG_KEY_MAX];
     scg_key key;
     memset(p, 0, sizeof *p);
-    snprintf(text, sizeof text, "bez3x3-poly-dc-%s-newton-mid-it4-tol0.25-ert0-out.shade",
+    snprintf(text, sizeof text, "bez3x3-poly-dc-%s-newton-cp-it6-tol0.05-ert0-out.shade",
              trim_field);
     if (scg_key_parse(text, &key, err) != SC_OK ||
         sc_trim_pack(s, key.trim_degree, &p->block, err) != SC_OK ||
@@ -488,10 +488,10 @@ static bool check_shape(const char *trim_field, shape which, double u0, double u
 TEST(trimgpu_key_forms)
 {
     static const char *const good[] = {
-        "bez3x3-poly-dc-clip3i16-newton-mid-it4-tol0.25-ert0-out.shade",
-        "bez3x3-poly-dc-left2i8-newton-mid-it4-tol0.25-ert0-out.shade",
+        "bez3x3-poly-dc-clip3i16-newton-cp-it6-tol0.05-ert0-out.shade",
+        "bez3x3-poly-dc-left2i8-newton-cp-it6-tol0.05-ert0-out.shade",
         "nurbs5x5-rat-dc-fast11i64-newton-cp-it8-tol1-ert2-out.aov",
-        "bezdyn-poly-loop-fast1i1-newton-mid-it4-tol0.25-ert0-out.shade",
+        "bezdyn-poly-loop-fast1i1-newton-cp-it6-tol0.05-ert0-out.shade",
     };
     for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
         scg_key key;
@@ -511,7 +511,7 @@ TEST(trimgpu_key_forms)
                                       "clip17i4", "fast3i", "clipi4", "clip03i4"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char text[SCG_KEY_MAX];
-        snprintf(text, sizeof text, "bez3x3-poly-dc-%s-newton-mid-it4-tol0.25-ert0-out.shade",
+        snprintf(text, sizeof text, "bez3x3-poly-dc-%s-newton-cp-it6-tol0.05-ert0-out.shade",
                  bad[i]);
         CHECK_INT(scg_key_parse(text, &key, &err), SC_FAIL);
         CHECK_CONTAINS(err.message, "trim configuration");
@@ -527,18 +527,18 @@ TEST(trimgpu_scene_keys)
     /* The outer polygon is of degree 1, the circle of degree 2. */
     sc_surface_key(&scene.surfaces[0], NULL, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),
-              "bez3x3-poly-dc-fast2i16-newton-mid-it4-tol0.25-ert0-out.shade");
+              "bez3x3-poly-dc-fast2i16-newton-cp-it6-tol0.05-ert0-out.shade");
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
     opts.trim_method = SCG_TRIM_LEFT;
     opts.trim_iters = 24;
     sc_surface_key(&scene.surfaces[0], &opts, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),
-              "bez3x3-poly-dc-left2i24-newton-mid-it4-tol0.25-ert0-out.shade");
+              "bez3x3-poly-dc-left2i24-newton-cp-it6-tol0.05-ert0-out.shade");
     opts.ignore_trims = 1;
     sc_surface_key(&scene.surfaces[0], &opts, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),
-              "bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade");
+              "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade");
     /* Every trimmed key a scene asks for builds. */
     scg_program *prog;
     sc_error err;
@@ -905,7 +905,7 @@ static int key_for(const char *trim_field, scg_key *key, scg_program **prog, scg
                    sc_error *err)
 {
     char text[SCG_KEY_MAX];
-    snprintf(text, sizeof text, "bez3x3-poly-dc-%s-newton-mid-it4-tol0.25-ert0-out.shade",
+    snprintf(text, sizeof text, "bez3x3-poly-dc-%s-newton-cp-it6-tol0.05-ert0-out.shade",
              trim_field);
     *prog = NULL;
     *it = NULL;

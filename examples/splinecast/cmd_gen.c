@@ -42,7 +42,7 @@ const char gen_keys_usage[] =
     "with --scene and --family:\n"
     "  --like KEY         method, start, iterations, tolerance, early ray\n"
     "                     termination and outputs (default: those of\n"
-    "                     bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade)\n"
+    "                     bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade)\n"
     "with any of them:\n"
     "  --iters N[,N...]   each key at each of these iteration counts\n";
 
@@ -56,6 +56,7 @@ static void options_like(const scg_key *like, sc_key_options *opts)
     opts->nurbs_direct = like->kind == SCG_PATCH_NURBS;
     opts->max_iters = like->max_iters;
     opts->tol_milli = like->tol_milli;
+    opts->start_set = true;
     opts->start = like->start;
     opts->ert = like->ert;
     opts->outputs = like->outputs;
