@@ -568,12 +568,13 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
     header(&parts[HEADER], stage, key_text);
     describe_key(&parts[HEADER], key);
 
-    /* The skeleton reads the ray direction itself (depth, normals). */
+    /* The skeleton reads the ray itself (depth, normals). */
     for (int s = 0; s < SCG_INPUT_COUNT; s++) {
         /* The hull view colours by the hull's record and domain. */
         int hull_id = (key->outputs & SCG_OUTPUT_HULLVIEW) &&
                       (s == SCG_IN_DOMAIN || s == SCG_IN_RECORD);
-        if (s == SCG_IN_T_LIMIT || (!use->inputs[s] && s != SCG_IN_RAY_DIR && !hull_id))
+        if (s == SCG_IN_T_LIMIT ||
+            (!use->inputs[s] && s != SCG_IN_RAY_DIR && s != SCG_IN_RAY_ORIGIN && !hull_id))
             continue;
         const scg_slot_info *info = scg_input_info((scg_input_slot)s);
         scg_text_printf(&parts[INPUTS], "layout(location = %d) %sin %s %s;\n", s,

@@ -42,7 +42,8 @@ static void arrays_free(arrays *a)
 }
 
 /* One record: homogeneous points (4 doubles each, world space) re-centred on
- * the middle of their Euclidean bounding box. */
+ * the middle of their Euclidean bounding box, rounded to float so that the
+ * record holds the centre exactly. */
 static void add_record(arrays *a, int surface_id, int deg_u, int deg_v, int nu, int nv,
                        const double *cp, int knot_u, int knot_v, const double rect[4])
 {
@@ -56,7 +57,7 @@ static void add_record(arrays *a, int surface_id, int deg_u, int deg_v, int nu, 
         }
     double centre[3];
     for (int c = 0; c < 3; c++)
-        centre[c] = 0.5 * (lo[c] + hi[c]);
+        centre[c] = (float)(0.5 * (lo[c] + hi[c]));
     int first_point = a->npoints;
     float *pt = grow(&a->points, &a->npoints, &a->cap_points, n, 4);
     for (int k = 0; k < n; k++) {
@@ -149,6 +150,14 @@ static void place_trim_blocks(arrays *a, const sc_gpu_surface *range, int total_
     }
 }
 
+/* Records [first, first + count) of the arrays: their centres (texel +3). */
+static void copy_centres(sc_gpu_data *data, const arrays *a, int first, int count)
+{
+    for (int r = first; r < first + count; r++)
+        for (int c = 0; c < 3; c++)
+            data->centres[3 * r + c] = a->records[4 * (SCG_RECORD_TEXELS * r + 3) + c];
+}
+
 static const GLenum texture_formats[SCG_TEXTURE_COUNT] = {
     [SCG_TEX_POINTS] = GL_RGBA32F,
     [SCG_TEX_KNOTS] = GL_R32F,
@@ -174,6 +183,8 @@ int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *ke
     data->npoints = a.npoints;
     data->nknots = a.nknots;
     data->ntrim_texels = a.ntrims;
+    data->centres = sc_alloc((size_t)(data->nrecords ? data->nrecords : 1), 3 * sizeof(double));
+    copy_centres(data, &a, 0, data->nrecords);
     for (int s = 0; s < scene->nsurfaces; s++)
         place_trim_blocks(&a, &data->surfaces[s], data->nrecords);
     if (a.ntrims) {
@@ -249,6 +260,7 @@ int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scen
         return sc_gpu_data_upload(gl, scene, keys, data, err);
     }
     place_trim_blocks(&a, &fresh, data->nrecords);
+    copy_centres(data, &a, old->first_record, old->record_count);
     GLuint records = data->buffers[SCG_TEX_RECORDS];
     gl->NamedBufferSubData(data->buffers[SCG_TEX_POINTS], (GLintptr)old->first_point * 16,
                            (GLsizeiptr)old->point_count * 16,
@@ -284,6 +296,7 @@ void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data)
     if (data->buffers[0])
         gl->DeleteBuffers(SCG_TEXTURE_COUNT, data->buffers);
     free(data->surfaces);
+    free(data->centres);
     memset(data, 0, sizeof *data);
 }
 
@@ -291,4 +304,9 @@ int sc_gpu_data_record(const sc_gpu_data *data, int surface, int patch)
 {
     const sc_gpu_surface *s = &data->surfaces[surface];
     return s->kind == SCG_PATCH_NURBS ? s->first_record : s->first_record + patch;
+}
+
+const double *sc_gpu_data_record_centre(const sc_gpu_data *data, int record)
+{
+    return data->centres + 3 * record;
 }

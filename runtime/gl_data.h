@@ -29,6 +29,9 @@ typedef struct sc_gpu_data {
     int nsurfaces;
     sc_gpu_surface *surfaces;
     int nrecords, npoints, nknots, ntrim_texels;
+    double *centres;                   /* per record, x y z: the point its
+                                          data is relative to (a float value,
+                                          as in the record) */
     size_t bytes;                      /* GPU bytes of all three textures */
     size_t bytes_uploaded;             /* by the last upload or update */
 } sc_gpu_data;
@@ -50,5 +53,7 @@ void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data);
 /* Record of Bézier patch `patch` (sc_surface_to_bezier numbering) of
  * surface s: its own record for `bez` surfaces, the surface's for `nurbs`. */
 int sc_gpu_data_record(const sc_gpu_data *data, int surface, int patch);
+/* The centre of a record (3 doubles). */
+const double *sc_gpu_data_record_centre(const sc_gpu_data *data, int record);
 
 #endif

@@ -22,15 +22,20 @@
 #include "scene_keys.h"
 
 /* Fragment-stage uniform and vertex-stage uniform locations (templates/hull.vert). */
-enum { LOC_VIEW_PROJECTION = 16, LOC_EYE = 17 };
+enum { LOC_VIEW_PROJECTION = 16, LOC_EYE = 17, LOC_EYE_LOW = 18, LOC_RASTER_EYE = 19 };
 /* Texture units of the per-surface colours (emit_glsl.c, hull.vert) and of
  * the nearest distance so far, `sc_nearest_t` (emit_glsl.c, ert1/ert2 keys). */
 enum { COLOUR_UNIT = 3, NEAREST_T_UNIT = 4 };
 
 /* One vertex of a hull as the vertex program reads it (templates/hull.vert:
  * locations 0 position, 1 start (u, v), 2 sub-patch domain, 3 record). */
+/* A hull vertex twice: relative to its record's centre, where the programs
+ * compute the ray, and relative to one origin for the whole scene, where
+ * it is rasterised, so that hulls of different records meeting at a point
+ * meet there bit for bit and no crack opens between them. */
 typedef struct gpu_vertex {
     float pos[3];
+    float raster_pos[3];
     float uv[2];
     float domain[4];
     int32_t record;
@@ -92,6 +97,7 @@ struct sc_renderer {
     float *nearest;          /* read back: the uvt attachment (nearest distance so
                                 far in .z) */
     float *tile_far;         /* its largest value per tile */
+    double raster_origin[3]; /* what hull vertices are rasterised relative to */
     float *cosine;           /* per pixel: cosine of its ray to the view direction */
     double cosine_fovy;      /* the field of view they are for (0: none yet) */
 };
@@ -212,13 +218,22 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
  * the colour attachment is sRGB, so the GL encodes it on the way in. */
 static float background_linear(void) { return (float)pow((0.2 + 0.055) / 1.055, 2.4); }
 
-/* Hull vertices in the parameters of their record's program: local [0, 1]²
- * of the Bézier patch for `bez` records, the surface's own for `nurbs`. */
+/* Hull vertices relative to their record's centre (hull.vert), in the
+ * parameters of their record's program: local [0, 1]² of the Bézier patch
+ * for `bez` records, the surface's own for `nurbs`. */
 static int upload_hulls(sc_renderer *r, sc_error *err)
 {
     const sc_gl *gl = r->gl;
     const sc_hulls *h = &r->hulls;
     gpu_vertex *verts = sc_alloc((size_t)h->nvertices, sizeof *verts);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < h->count; k++)
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fmin(lo[c], h->subpatches[k].lo[c]);
+            hi[c] = fmax(hi[c], h->subpatches[k].hi[c]);
+        }
+    for (int c = 0; c < 3; c++)
+        r->raster_origin[c] = h->count ? 0.5 * (lo[c] + hi[c]) : 0;
     for (int k = 0; k < h->count; k++) {
         const sc_subpatch *s = &h->subpatches[k];
         int nurbs = r->kinds[s->surface] == SCG_PATCH_NURBS;
@@ -228,10 +243,13 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
         double ov = nurbs ? s->domain[2] - dv * s->local[2] : 0;
         const double *rect = nurbs ? s->domain : s->local;
         int record = sc_gpu_data_record(&r->data, s->surface, s->patch);
+        const double *centre = sc_gpu_data_record_centre(&r->data, record);
         for (int v = s->first_vertex; v < s->first_vertex + s->vertex_count; v++) {
             gpu_vertex *g = &verts[v];
-            for (int c = 0; c < 3; c++)
-                g->pos[c] = (float)h->vertices[v].pos[c];
+            for (int c = 0; c < 3; c++) {
+                g->pos[c] = (float)(h->vertices[v].pos[c] - centre[c]);
+                g->raster_pos[c] = (float)(h->vertices[v].pos[c] - r->raster_origin[c]);
+            }
             g->uv[0] = (float)(ou + du * h->vertices[v].uv[0]);
             g->uv[1] = (float)(ov + dv * h->vertices[v].uv[1]);
             for (int c = 0; c < 4; c++)
@@ -304,7 +322,9 @@ static void setup_vertex_array(sc_renderer *r)
     gl->VertexArrayAttribFormat(vao, 2, 4, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, domain));
     gl->EnableVertexArrayAttrib(vao, 3);
     gl->VertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(gpu_vertex, record));
-    for (int a = 0; a < 4; a++)
+    gl->EnableVertexArrayAttrib(vao, 4);
+    gl->VertexArrayAttribFormat(vao, 4, 3, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, raster_pos));
+    for (int a = 0; a < 5; a++)
         gl->VertexArrayAttribBinding(vao, (GLuint)a, 0);
 }
 
@@ -612,7 +632,8 @@ static void read_nearest_tiles(sc_renderer *r)
 }
 
 /* Whether hull k lies behind the nearest surface so far at every pixel it
- * can cover: its box, projected (vp, column-major) and widened by a pixel,
+ * can cover: its box, projected (vp, column-major, the camera at the
+ * origin) and widened by a pixel,
  * touches only tiles whose largest depth so far is nearer than the box's
  * nearest corner (along the view direction fwd). Along any ray of those
  * pixels every point of the hull then lies behind the hit already there, so
@@ -629,7 +650,7 @@ static int hull_hidden(const sc_renderer *r, const float vp[16], const double fw
         near = fmin(near, dot3(d, fwd));
         double clip[4];
         for (int row = 0; row < 4; row++)
-            clip[row] = vp[row] * p[0] + vp[4 + row] * p[1] + vp[8 + row] * p[2] + vp[12 + row];
+            clip[row] = vp[row] * d[0] + vp[4 + row] * d[1] + vp[8 + row] * d[2] + vp[12 + row];
         if (!(clip[3] > 1e-9))
             return 0;  /* a corner at or behind the eye: no bounded rectangle */
         double x = (0.5 * clip[0] / clip[3] + 0.5) * w, y = (0.5 * clip[1] / clip[3] + 0.5) * h;
@@ -691,6 +712,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     depth_range(r, cam->eye, fwd, &znear, &zfar);
     float view[16], proj[16], vp[16];
     sc_camera_gl_matrices(cam, znear, zfar, view, proj);
+    /* The camera moved to the origin: the programs project points relative
+     * to the eye (hull.vert), never world coordinates. */
+    view[12] = view[13] = view[14] = 0;
     for (int col = 0; col < 4; col++)
         for (int row = 0; row < 4; row++) {
             double sum = 0;
@@ -699,7 +723,12 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
             vp[col * 4 + row] = (float)sum;
         }
     float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
-    float eye[3] = {(float)cam->eye[0], (float)cam->eye[1], (float)cam->eye[2]};
+    float eye[3], eye_low[3], raster_eye[3];
+    for (int c = 0; c < 3; c++) {
+        eye[c] = (float)cam->eye[c];
+        eye_low[c] = (float)(cam->eye[c] - eye[c]);
+        raster_eye[c] = (float)(cam->eye[c] - r->raster_origin[c]);
+    }
 
     /* Hulls holding the eye go first (their hits may lie anywhere in front
      * of the other hulls), grouped by program; then the others in the
@@ -748,6 +777,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
                 continue;
             gl->ProgramUniformMatrix4fv(program, LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
             gl->ProgramUniform3fv(program, LOC_EYE, 1, eye);
+            gl->ProgramUniform3fv(program, LOC_EYE_LOW, 1, eye_low);
+            gl->ProgramUniform3fv(program, LOC_RASTER_EYE, 1, raster_eye);
             gl->ProgramUniform1f(program, SCG_UNI_FOOTPRINT, footprint);
         }
     }

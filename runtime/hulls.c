@@ -273,6 +273,15 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
         free(world);
         return SC_OK;
     }
+    /* qhull works relative to the piece's middle: its round-off
+     * tolerances scale with the coordinates, so far from the origin it would
+     * merge facets by amounts that depend on where the model sits. */
+    double mid[3];
+    for (int c = 0; c < 3; c++)
+        mid[c] = 0.5 * (lo[c] + hi[c]);
+    for (int k = 0; k < np; k++)
+        for (int c = 0; c < 3; c++)
+            world[3 * k + c] -= mid[c];
     int *tris = NULL;
     int copies = 1;
     double *coords = sc_alloc((size_t)np * 3, sizeof(double));
@@ -330,7 +339,8 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
             int cp_index = k / copies;
             int i = cp_index % (p->deg_u + 1), j = cp_index / (p->deg_u + 1);
             sc_hull_vertex *v = &h->vertices[h->nvertices];
-            memcpy(v->pos, coords + 3 * k, sizeof v->pos);
+            for (int c = 0; c < 3; c++)
+                v->pos[c] = coords[3 * k + c] + mid[c];
             v->uv[0] = p->local[0] + (p->local[1] - p->local[0]) * i / p->deg_u;
             v->uv[1] = p->local[2] + (p->local[3] - p->local[2]) * j / p->deg_v;
             for (int c = 0; c < 3; c++) {

@@ -443,6 +443,40 @@ static int render_view(const sc_gl *gl, const sc_scene *scene, sc_view view,
     return ok;
 }
 
+/* Float precision does not depend on where the model sits: the teapot
+ * moved 100,000 units away from the origin renders as accurately as at
+ * home (the programs work relative to each record's centre and the
+ * rasteriser relative to the scene's; in world coordinates a float step
+ * there is 0.008, a quarter of a pixel at this size). */
+TEST(gl_render_far_from_origin)
+{
+    const char *why;
+    if (!test_context(SC_GL_BACKEND_DEFAULT, &why))
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
+    static const double offset[3] = {1.0e5, -1.0e5, 3.0e4};
+    for (int s = 0; s < scene.nsurfaces; s++) {
+        sc_surface *surf = &scene.surfaces[s];
+        for (int k = 0; k < surf->nu * surf->nv; k++)
+            for (int c = 0; c < 3; c++)
+                surf->cp[4 * k + c] += offset[c] * surf->cp[4 * k + 3];
+    }
+    char path[512];
+    snprintf(path, sizeof path, "%s/far_teapot.obj", test_tmpdir());
+    CHECK_INT(sc_write_obj(path, &scene, &err), SC_OK);
+    sc_scene_free(&scene);
+    sc_accuracy acc;
+    sc_render_stats stats;
+    CHECK_INT(render_against_reference(SC_GL_BACKEND_DEFAULT, path, 160, 160, &acc, &stats, &why),
+              1);
+    CHECK(acc.ref_hits > 160 * 160 / 10);
+    CHECK(acc.fail_pct <= 0.1);
+    CHECK(acc.pos_median_px < 0.1);
+    CHECK(acc.normal_mean_deg < 0.5);
+}
+
 /* The hull view shows every proxy hull: it covers every pixel the surface
  * does and more (hulls enclose a curved patch with slack), and the four
  * hulls of the patch show in different colours. */

@@ -228,8 +228,9 @@ void main()
         discard;
 
     // Depth of the hit, not of the hull: hulls overlap where surfaces do not.
-    // The depth range is the default [0, 1] (gl_DepthRange is not in SPIR-V).
-    vec4 clip = sc_view_projection * vec4(point + sc_centre, 1.0);
+    // The projection is the camera's moved to the origin (hull.vert). The
+    // depth range is the default [0, 1] (gl_DepthRange is not in SPIR-V).
+    vec4 clip = sc_view_projection * vec4(point - sc_ray_origin, 1.0);
     gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
 
     // Normals face the viewer, so that no orientation convention of a file
