@@ -354,7 +354,8 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     if (check_int(desc->generic_above, 0, SCG_MAX_DEGREE, "sc_keys_desc.generic_above", err) ||
         check_int(desc->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_keys_desc.trim_iters", err) ||
         check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_keys_desc.max_iters", err) ||
-        check_int(desc->ert, 0, SCG_ERT_CONSERVATIVE, "sc_keys_desc.ert", err) ||
+        check_enum(desc->termination, SC_TERMINATION_MANUAL_BOTH + 1,
+                   "sc_keys_desc.termination", err) ||
         check_enum(desc->start, SC_START_CPMAP + 1, "sc_keys_desc.start", err) ||
         trim_mode(desc->trim, "sc_keys_desc.trim", &opts->trim_method, err) ||
         check_tolerance(desc->tolerance_px, "sc_keys_desc.tolerance_px", &opts->tol_milli, err))
@@ -369,7 +370,11 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->max_iters = desc->max_iters;
     opts->start_set = desc->start != SC_START_DEFAULT;
     opts->start = desc->start == SC_START_MID ? SCG_START_MID : SCG_START_CP;
-    opts->ert = (scg_ert)desc->ert;
+    static const scg_ert ert[] = {
+        [SC_TERMINATION_NONE] = SCG_ERT_NONE, [SC_TERMINATION_CONSERVATIVE] = SCG_ERT_CONSERVATIVE,
+        [SC_TERMINATION_MANUAL] = SCG_ERT_BEFORE, [SC_TERMINATION_MANUAL_BOTH] = SCG_ERT_BOTH};
+    opts->ert_set = desc->termination != SC_TERMINATION_DEFAULT;
+    opts->ert = ert[desc->termination];
     opts->outputs = desc->outputs;
     return SC_OK;
 }

@@ -201,6 +201,7 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
         .start = desc->start,
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
+        .ert_set = true,
         .ert = key_ert(desc->ert),
         .outputs = SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV |
                    (desc->view == SC_VIEW_ITERS ? SCG_OUTPUT_ITERS : 0) |

@@ -37,9 +37,8 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->tol_milli = opts->tol_milli;
     if (opts->start_set)
         key->start = opts->start;
-    key->ert = opts->ert;
-    if (opts->outputs)
-        key->outputs = opts->outputs;
+    key->ert = opts->ert_set ? opts->ert : SC_KEY_DEFAULT_ERT;
+    key->outputs = opts->outputs ? opts->outputs : SC_KEY_DEFAULT_OUTPUTS;
 }
 
 static int compare_keys(const void *a, const void *b) { return strcmp(a, b); }

@@ -15,6 +15,13 @@
  * program takes over. */
 #define SC_UNROLL_MAX_DEGREE 9
 
+/* The early ray termination and outputs of a scene's keys unless asked
+ * otherwise: those the renderer draws with by default (manual early ray
+ * termination, gl_render.h; the shaded colour and the AOVs), so that `info`,
+ * `gen --scene` and `make shaders` name the programs `render` compiles. */
+#define SC_KEY_DEFAULT_ERT SCG_ERT_BEFORE
+#define SC_KEY_DEFAULT_OUTPUTS (SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV)
+
 typedef struct sc_key_options {
     /* 0 (default): surfaces are drawn as extracted Bézier patches (`bez`
      * keys); 1: whole NURBS surfaces with de Boor from the knot texture
@@ -32,14 +39,15 @@ typedef struct sc_key_options {
      * docs/trimming.md has the measurements behind the defaults. */
     scg_trim_mode trim_method;
     int trim_iters;
-    /* The remaining fields are copied into every key; 0 means the default
-     * of scg_key_default (key.h: cp, it6, tol0.05, ert0, out.shade). */
+    /* The remaining fields are copied into every key; 0 means the defaults
+     * of scg_key_default (key.h: cp, it6, tol0.05) and the two above. */
     int max_iters;
     int tol_milli;
     bool start_set;           /* false: SCG_DEFAULT_START */
     scg_start start;
+    bool ert_set;             /* false: SC_KEY_DEFAULT_ERT */
     scg_ert ert;
-    unsigned outputs;
+    unsigned outputs;         /* 0: SC_KEY_DEFAULT_OUTPUTS */
 } sc_key_options;
 
 /* The key surface s needs under opts (NULL: defaults). */

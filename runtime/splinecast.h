@@ -127,6 +127,18 @@ typedef enum sc_trim_method {
     SC_TRIM_LEFT           /* every piece, left-only Bézier clipping */
 } sc_trim_method;
 
+/* Early ray termination (default: manual). */
+typedef enum sc_ray_termination {
+    SC_TERMINATION_DEFAULT = 0,
+    SC_TERMINATION_NONE,        /* every hull fragment runs the intersection */
+    SC_TERMINATION_CONSERVATIVE,/* depth written with depth_greater, so that
+                                   a GPU may keep early depth testing */
+    SC_TERMINATION_MANUAL,      /* the intersection is skipped behind the
+                                   nearest hit so far */
+    SC_TERMINATION_MANUAL_BOTH  /* also a hit behind it is dropped before
+                                   trimming and shading */
+} sc_ray_termination;
+
 /* Outputs of a generated program (bits). */
 enum {
     SC_OUTPUT_SHADE = 1 << 0,  /* shaded colour */
@@ -148,11 +160,10 @@ typedef struct sc_keys_desc {
     int max_iters;             /* Newton iterations (6) */
     double tolerance_px;       /* Newton tolerance in pixel footprints (0.05) */
     sc_start start;
-    int ert;                   /* early ray termination in the program: 0 none,
-                                  1 skip a ray behind the nearest hit so far,
-                                  2 also drop a hit behind it, 3 conservative
-                                  depth (layout(depth_greater)) */
-    unsigned outputs;          /* SC_OUTPUT_* bits (SC_OUTPUT_SHADE) */
+    sc_ray_termination termination; /* what the programs do for early ray
+                                  termination (manual: keys say ert1) */
+    unsigned outputs;          /* SC_OUTPUT_* bits (SC_OUTPUT_SHADE |
+                                  SC_OUTPUT_AOV) */
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of
@@ -256,17 +267,6 @@ typedef enum sc_hull_split {
                                   hull_tolerance */
     SC_SPLIT_UNIFORM           /* hull_divisions × hull_divisions per patch */
 } sc_hull_split;
-
-typedef enum sc_ray_termination {
-    SC_TERMINATION_DEFAULT = 0,
-    SC_TERMINATION_NONE,        /* every hull fragment runs the intersection */
-    SC_TERMINATION_CONSERVATIVE,/* depth written with depth_greater, so that
-                                   a GPU may keep early depth testing */
-    SC_TERMINATION_MANUAL,      /* the intersection is skipped behind the
-                                   nearest hit so far */
-    SC_TERMINATION_MANUAL_BOTH  /* also a hit behind it is dropped before
-                                   trimming and shading */
-} sc_ray_termination;
 
 typedef enum sc_hull_order {
     SC_HULL_ORDER_DEFAULT = 0,

@@ -529,6 +529,47 @@ TEST(gl_render_hull_view)
     CHECK(hues >= 3);
 }
 
+/* `info` and `gen --scene` name the programs `render` compiles: the
+ * default scene keys are the renderer's default keys, on a scene of mixed
+ * degrees and on a trimmed one. */
+TEST(gl_render_keys_are_the_scene_keys)
+{
+    const char *why;
+    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    static const char *const scenes[] = {"mixed.obj", "trim_nine.obj"};
+    for (int i = 0; i < 2; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/examples/scenes/%s", test_root_dir, scenes[i]);
+        sc_scene scene;
+        sc_error err = {0};
+        CHECK_INT(sc_read_scene(path, &scene, &err), SC_OK);
+        char(*keys)[SCG_KEY_MAX];
+        int count;
+        CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
+        sc_renderer *r;
+        CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err), SC_OK);
+        sc_render_stats stats;
+        sc_renderer_stats(r, &stats);
+        CHECK_INT(stats.programs, count);
+        for (int s = 0; s < scene.nsurfaces; s++) {
+            char text[SCG_KEY_MAX];
+            scg_key_format(sc_renderer_surface_key(r, s), text, sizeof text);
+            int listed = 0;
+            for (int k = 0; k < count; k++)
+                listed |= !strcmp(keys[k], text);
+            if (!listed)
+                fprintf(stderr, "  %s surface %d: %s not among the scene keys\n", scenes[i], s,
+                        text);
+            CHECK(listed);
+        }
+        sc_renderer_destroy(r);
+        free(keys);
+        sc_scene_free(&scene);
+    }
+}
+
 /* A 12×12 surface (real CAD data has them) goes through an OBJ file, is
  * drawn with the generic program and matches the reference. */
 TEST(gl_render_degree12_generic)

@@ -42,7 +42,8 @@ const char gen_keys_usage[] =
     "with --scene and --family:\n"
     "  --like KEY         method, start, iterations, tolerance, early ray\n"
     "                     termination and outputs (default: those of\n"
-    "                     bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade)\n"
+    "                     bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov,\n"
+    "                     the programs `render` draws with by default)\n"
     "with any of them:\n"
     "  --iters N[,N...]   each key at each of these iteration counts\n";
 
@@ -58,6 +59,7 @@ static void options_like(const scg_key *like, sc_key_options *opts)
     opts->tol_milli = like->tol_milli;
     opts->start_set = true;
     opts->start = like->start;
+    opts->ert_set = true;
     opts->ert = like->ert;
     opts->outputs = like->outputs;
 }
@@ -144,6 +146,8 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
     memset(set, 0, sizeof *set);
     scg_key like;
     scg_key_default(&like, SCG_PATCH_BEZIER, 3, 3);
+    like.ert = SC_KEY_DEFAULT_ERT;
+    like.outputs = SC_KEY_DEFAULT_OUTPUTS;
     const char *scene_path = NULL, *family = NULL;
     int iters[SCG_MAX_ITERS], niters = 0, iters_given = 0;
     char **given = sc_alloc((size_t)argc, sizeof *given);
