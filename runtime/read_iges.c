@@ -239,8 +239,11 @@ static int tokenize(const char *t, int n, char pd, char rd, params *p, int *at)
         token tk = {pos, 0, 0};
         int q = pos;
         long long count = 0;
-        while (q < n && isdigit((unsigned char)t[q]) && count <= n)
-            count = count * 10 + (t[q++] - '0');
+        /* Every digit belongs to the count, even past the text's length:
+         * "99999H" is a Hollerith string too long to fit, not text. */
+        for (; q < n && isdigit((unsigned char)t[q]); q++)
+            if (count <= n)
+                count = count * 10 + (t[q] - '0');
         if (q > pos && q < n && t[q] == 'H') {
             if (count > n - (q + 1)) {
                 *at = pos;
@@ -330,9 +333,13 @@ static int get_int(reader *r, const params *p, int i, int *out)
     double v;
     if (get_real(r, p, i, &v))
         return SC_FAIL;
-    if (v != floor(v) || fabs(v) > 1e9)
+    if (v != floor(v))
         return fail_entity(r, p->entity, token_line(r, p, i),
                            "parameter %d: expected an integer, found %.17g", i, v);
+    if (fabs(v) > 1e9)
+        return fail_entity(r, p->entity, token_line(r, p, i),
+                           "parameter %d: integer %.17g is out of range (at most 1e9 in "
+                           "magnitude)", i, v);
     *out = (int)v;
     return SC_OK;
 }
@@ -1118,9 +1125,13 @@ static int expect_type(reader *r, const params *p, int i, int target, int type)
 static int loop_of_142(reader *r, int e, curve_list *out)
 {
     params p;
-    int bptr = -1, status = load_params(r, e, &p);
+    int sptr, bptr = -1, status = load_params(r, e, &p);
     if (status == SC_OK)
         status = need_params(r, &p, 5);
+    /* SPTR is not followed (the owner names the surface), but a used
+     * entity is checked whole. */
+    if (status == SC_OK)
+        status = get_pointer(r, &p, 2, &sptr);
     if (status == SC_OK)
         status = get_pointer(r, &p, 3, &bptr);
     params_free(&p);
@@ -1164,8 +1175,8 @@ static int edge_curves(reader *r, const params *p, int first, int count, int str
  * (2 = reversed), K and K parameter-space curves. */
 static int loop_of_141_params(reader *r, const params *p, curve_list *out)
 {
-    int n, at = 5, missing = 0;
-    if (need_params(r, p, 4) || get_count(r, p, 4, 3, &n))
+    int sptr, n, at = 5, missing = 0;
+    if (need_params(r, p, 4) || get_pointer(r, p, 3, &sptr) || get_count(r, p, 4, 3, &n))
         return SC_FAIL;
     for (int i = 0; i < n; i++) {
         int sense, k;
@@ -1595,8 +1606,13 @@ static int surface_param(int type)
     }
 }
 
-static int mark_references(reader *r)
+/* Only finds which 128s are referenced, so a broken entity here is not an
+ * error: whether it matters is known only when a surface uses it, and then
+ * its conversion reports it. Until then it references nothing. */
+static void mark_references(reader *r)
 {
+    sc_error *err = r->err;
+    r->err = NULL;
     for (int e = 0; e < r->nent; e++) {
         int i = surface_param(r->ent[e].type);
         if (!i)
@@ -1608,12 +1624,10 @@ static int mark_references(reader *r)
         if (status == SC_OK)
             status = get_pointer(r, &p, i, &target);
         params_free(&p);
-        if (status)
-            return SC_FAIL;
-        if (target >= 0)
+        if (status == SC_OK && target >= 0)
             r->ent[target].referenced = 1;
     }
-    return SC_OK;
+    r->err = err;
 }
 
 static int is_known_type(int type)
@@ -1670,10 +1684,10 @@ int sc_read_iges(const char *text, size_t size, const char *name, sc_scene *scen
         status = read_global(&r);
     if (status == SC_OK)
         status = read_directory(&r);
-    if (status == SC_OK)
-        status = mark_references(&r);
-    if (status == SC_OK)
+    if (status == SC_OK) {
+        mark_references(&r);
         status = convert_all(&r);
+    }
     free(r.rec);
     free(r.ent);
     return sc_finish_read(status, name, scene);

@@ -1,10 +1,13 @@
 /* main.c — runs the tests listed in the generated tests_list.h (one line
  * X(name) per TEST in the files of tests/), in order, or only those whose names
- * contain one of the command-line arguments. Last line: N passed, N failed. */
+ * contain one of the command-line arguments. Last line: N passed, N failed.
+ * SC_CLI overrides the command line under test (by default the splinecast
+ * beside run_tests). */
 #define _POSIX_C_SOURCE 200809L
 #include "test.h"
 
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "sc_base.h"
 
@@ -37,11 +40,30 @@ static int selected(const char *name, int argc, char **argv)
     return 0;
 }
 
+/* The splinecast built with this run_tests sits in the same folder, so a
+ * test run from any build folder checks its own command line. */
+static const char *cli_beside_self(const char *argv0)
+{
+    static char path[4096 + sizeof "splinecast"];
+    char self[4096];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n > 0)
+        self[n] = 0;
+    else
+        snprintf(self, sizeof self, "%s", argv0);
+    char *slash = strrchr(self, '/');
+    if (!slash) /* found through PATH: so is splinecast */
+        return "splinecast";
+    slash[1] = 0;
+    snprintf(path, sizeof path, "%ssplinecast", self);
+    return path;
+}
+
 int main(int argc, char **argv)
 {
     test_root_dir = getenv("SC_ROOT") ? getenv("SC_ROOT") : ".";
     test_data_dir = getenv("SC_DATA") ? getenv("SC_DATA") : "../shared/data";
-    test_cli = getenv("SC_CLI") ? getenv("SC_CLI") : "build/splinecast";
+    test_cli = getenv("SC_CLI") ? getenv("SC_CLI") : cli_beside_self(argv[0]);
     int passed = 0, failed = 0, skipped = 0;
     for (size_t i = 0; i < sizeof tests / sizeof tests[0]; i++) {
         if (!selected(tests[i].name, argc, argv))

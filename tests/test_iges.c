@@ -10,6 +10,7 @@
 
 #include "io.h"
 #include "nurbs.h"
+#include "trim.h"
 
 static const char *occt_dir = "/usr/share/opencascade/data/iges";
 
@@ -660,6 +661,149 @@ TEST(iges_reversed_member_and_missing_pcurve)
     sc_scene_free(&s);
 }
 
+/* ---- bounded surfaces and B-rep faces ---- */
+
+/* The plane over [0, 1]^2 with the square hole [0.4, 0.6]^2, as entities
+ * 0..16 shared by the 143 and the B-rep file: the plane (D 1), the domain's
+ * sides as 110s (D 3..9, counter-clockwise), the hole's sides P_i -> P_i+1
+ * (P = (.4,.4), (.6,.4), (.6,.6), (.4,.6)) each split at its midpoint M_i and
+ * written against the loop, P_i+1 -> M_i (D 11 + 4i) then M_i -> P_i
+ * (D 13 + 4i), and the hole's sides in model space, also written against
+ * the loop (D 27 + 2i). */
+enum { HOLE_SHARED = 17 };
+static void holed_plane(spec *e)
+{
+    static char text[16][128];
+    static const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    static const double hole[4][2] = {{.4, .4}, {.6, .4}, {.6, .6}, {.4, .6}};
+    e[0] = (spec){128, plane_params(1), 0, 0, NULL};
+    for (int i = 0; i < 4; i++) {
+        const double *a = corner[i], *b = corner[(i + 1) % 4];
+        const double *p = hole[i], *q = hole[(i + 1) % 4];
+        double m[2] = {(p[0] + q[0]) / 2, (p[1] + q[1]) / 2};
+        snprintf(text[i], sizeof text[i], "110,%g,%g,0.,%g,%g,0.;", a[0], a[1], b[0], b[1]);
+        snprintf(text[4 + 2 * i], sizeof text[0], "110,%g,%g,0.,%g,%g,0.;", q[0], q[1], m[0], m[1]);
+        snprintf(text[5 + 2 * i], sizeof text[0], "110,%g,%g,0.,%g,%g,0.;", m[0], m[1], p[0], p[1]);
+        snprintf(text[12 + i], sizeof text[0], "110,%g,%g,0.,%g,%g,0.;", q[0], q[1], p[0], p[1]);
+    }
+    for (int k = 0; k < 16; k++)
+        e[1 + k] = (spec){110, text[k], 0, 0, NULL};
+}
+
+/* The read face: one surface, the domain as outer loop (4 segments) and
+ * the hole (8 segments) running P0 -> M0 -> P1 -> ... -> P0 once the
+ * reversed edges are turned around, closed without repair; points in the
+ * hole are trimmed away, points of the face kept. */
+static void check_holed_face(const sc_scene *s)
+{
+    CHECK_INT(s->nsurfaces, 1);
+    CHECK_INT(s->dropped_loops, 0);
+    CHECK_INT(s->repaired_gaps, 0);
+    if (s->nsurfaces != 1)
+        return;
+    const sc_surface *f = &s->surfaces[0];
+    CHECK_INT(f->nloops, 2);
+    int hole_curves = f->nloops == 2 ? f->loops[1].ncurves : 0;
+    if (f->nloops == 2) {
+        CHECK_INT(f->loops[0].is_hole, 0);
+        CHECK_INT(f->loops[0].ncurves, 4);
+        CHECK_INT(f->loops[1].is_hole, 1);
+        CHECK_INT(hole_curves, 8);
+    }
+    static const double walk[9][2] = {{.4, .4}, {.5, .4}, {.6, .4}, {.6, .5}, {.6, .6},
+                                      {.5, .6}, {.4, .6}, {.4, .5}, {.4, .4}};
+    for (int i = 0; hole_curves == 8 && i < 8; i++) {
+        const sc_curve *c = &f->loops[1].curves[i];
+        double t0, t1, a[2], b[2];
+        sc_curve_domain(c, &t0, &t1);
+        eval2(c, t0, a);
+        eval2(c, t1, b);
+        CHECK_NEAR(a[0], walk[i][0], 1e-15);
+        CHECK_NEAR(a[1], walk[i][1], 1e-15);
+        CHECK_NEAR(b[0], walk[i + 1][0], 1e-15);
+        CHECK_NEAR(b[1], walk[i + 1][1], 1e-15);
+    }
+    sc_trim *trim = NULL;
+    sc_error err;
+    CHECK_INT(sc_trim_prepare(f, &trim, &err), SC_OK);
+    CHECK(trim != NULL);
+    static const struct { double u, v; int kept; } cases[] = {
+        {0.5, 0.5, 0},   {0.41, 0.41, 0}, {0.59, 0.45, 0}, {0.45, 0.59, 0}, {0.2, 0.2, 1},
+        {0.5, 0.3, 1},   {0.7, 0.5, 1},   {0.5, 0.65, 1},  {0.39, 0.5, 1},  {0.95, 0.95, 1},
+        {0.05, 0.61, 1},
+    };
+    for (size_t i = 0; trim && i < sizeof cases / sizeof cases[0]; i++)
+        CHECK_INT(sc_trim_inside(trim, cases[i].u, cases[i].v), cases[i].kept);
+    sc_trim_free(trim);
+}
+
+TEST(iges_bounded_surface_with_hole)
+{
+    /* 143 over the plane: the first 141 is the domain, the second the hole,
+     * whose edges run against the boundary (SENSE = 2) with two
+     * parameter-space curves each, the model-space curve shared. */
+    spec e[HOLE_SHARED + 3];
+    holed_plane(e);
+    char hole[256];
+    int at = snprintf(hole, sizeof hole, "141,1,2,1,4");
+    for (int i = 0; i < 4; i++)
+        at += snprintf(hole + at, sizeof hole - (size_t)at, ",%d,2,2,%d,%d", 27 + 2 * i,
+                       11 + 4 * i, 13 + 4 * i);
+    snprintf(hole + at, sizeof hole - (size_t)at, ";");
+    e[HOLE_SHARED] = (spec){141, "141,1,2,1,4,3,1,1,3,5,1,1,5,7,1,1,7,9,1,1,9;", 0, 0, NULL};
+    e[HOLE_SHARED + 1] = (spec){141, hole, 0, 0, NULL};
+    e[HOLE_SHARED + 2] = (spec){143, "143,1,1,2,35,37;", 0, 0, NULL};
+    sc_scene s;
+    CHECK_INT(read_specs(e, HOLE_SHARED + 3, &s), SC_OK);
+    check_holed_face(&s);
+    CHECK_INT(s.nskipped, 0);
+    CHECK_STR(warnings, "");
+    sc_scene_free(&s);
+}
+
+TEST(iges_brep_face_with_hole)
+{
+    /* 186 -> 514 -> 510 -> 508 over the plane, with the 502 vertices and
+     * 504 edges of a real solid. The hole's edges are used against their
+     * direction (orientation flag 0) with two parameter-space curves each. */
+    spec e[HOLE_SHARED + 7];
+    holed_plane(e);
+    char vertices[256], edges[256], outer[256], hole[256];
+    int nv = snprintf(vertices, sizeof vertices, "502,8,0.,0.,0.,1.,0.,0.,1.,1.,0.,0.,1.,0.,"
+                      ".4,.4,0.,.6,.4,0.,.6,.6,0.,.4,.6,0.;");
+    int ne = snprintf(edges, sizeof edges, "504,8");
+    int no = snprintf(outer, sizeof outer, "508,4");
+    int nh = snprintf(hole, sizeof hole, "508,4");
+    for (int i = 0; i < 4; i++) {
+        ne += snprintf(edges + ne, sizeof edges - (size_t)ne, ",%d,35,%d,35,%d", 3 + 2 * i, 1 + i,
+                       1 + (i + 1) % 4);
+        no += snprintf(outer + no, sizeof outer - (size_t)no, ",0,37,%d,1,1,0,%d", 1 + i, 3 + 2 * i);
+    }
+    for (int i = 0; i < 4; i++) {
+        ne += snprintf(edges + ne, sizeof edges - (size_t)ne, ",%d,35,%d,35,%d", 27 + 2 * i,
+                       5 + (i + 1) % 4, 5 + i);
+        nh += snprintf(hole + nh, sizeof hole - (size_t)nh, ",0,37,%d,0,2,0,%d,0,%d", 5 + i,
+                       11 + 4 * i, 13 + 4 * i);
+    }
+    CHECK(nv < (int)sizeof vertices && ne + 1 < (int)sizeof edges);
+    snprintf(edges + ne, sizeof edges - (size_t)ne, ";");
+    snprintf(outer + no, sizeof outer - (size_t)no, ";");
+    snprintf(hole + nh, sizeof hole - (size_t)nh, ";");
+    e[HOLE_SHARED] = (spec){502, vertices, 0, 0, NULL};     /* D 35 */
+    e[HOLE_SHARED + 1] = (spec){504, edges, 0, 0, NULL};    /* D 37 */
+    e[HOLE_SHARED + 2] = (spec){508, outer, 0, 0, NULL};    /* D 39 */
+    e[HOLE_SHARED + 3] = (spec){508, hole, 0, 0, NULL};     /* D 41 */
+    e[HOLE_SHARED + 4] = (spec){510, "510,1,2,1,39,41;", 0, 0, NULL}; /* D 43 */
+    e[HOLE_SHARED + 5] = (spec){514, "514,1,43,1;", 0, 0, NULL};      /* D 45 */
+    e[HOLE_SHARED + 6] = (spec){186, "186,45,1,0;", 0, 0, NULL};
+    sc_scene s;
+    CHECK_INT(read_specs(e, HOLE_SHARED + 7, &s), SC_OK);
+    check_holed_face(&s);
+    CHECK_INT(s.nskipped, 0);
+    CHECK_STR(warnings, "");
+    sc_scene_free(&s);
+}
+
 /* ---- malformed files ---- */
 
 /* Reads text that must fail; checks that the message holds every needle
@@ -756,6 +900,28 @@ TEST(iges_malformed_pointer_out_of_range)
     free(text);
 }
 
+TEST(iges_unused_entities_never_fail)
+{
+    /* Next to a good plane: a 142 that nothing uses, pointing nowhere, and
+     * a 140 offset surface (unsupported) whose surface pointer is broken.
+     * Neither is used by a surface, so the file reads; the 140 is counted. */
+    spec e[] = {
+        {128, plane_params(1), 0, 0, NULL},
+        {142, "142,0,999,0,0,1;", 0, 0, NULL},
+        {140, "140,0.,0.,1.,1.,999;", 0, 0, NULL},
+    };
+    sc_scene s;
+    CHECK_INT(read_specs(e, 3, &s), SC_OK);
+    CHECK_INT(s.nsurfaces, 1);
+    CHECK_INT(skipped_count(&s, "iges-140", "unsupported"), 1);
+    sc_scene_free(&s);
+    /* The same 142 used as a trim loop: now it matters and fails the file. */
+    char *text = variant(4, "142,0,999,7,0,2;", 0);
+    CHECK(refused(text, "entity 142 (D 9): parameter 2: pointer 999",
+                  position_of(text, "142,0,999")));
+    free(text);
+}
+
 TEST(iges_malformed_reference_cycle)
 {
     /* A composite that contains itself. */
@@ -811,6 +977,17 @@ TEST(iges_malformed_hollerith)
     CHECK_INT(read_text(text, &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 1);
     CHECK_CONTAINS(warnings, "t.igs:2: global section");
+    sc_scene_free(&s);
+    free(text);
+    /* A count with extra digits is still a count, not plain text. */
+    text = variant(0, NULL, 0);
+    g = strstr(text, "1H,,1H;,4Htest,5Ht.igs,;");
+    CHECK(g != NULL);
+    const char *longer = "1H,,1H;,99999HOpen,5Ht.igs,;";
+    memcpy(g, longer, strlen(longer));
+    CHECK_INT(read_text(text, &s, &err), SC_OK);
+    CHECK_INT(s.nsurfaces, 1);
+    CHECK_CONTAINS(warnings, "t.igs:2: global section: a Hollerith string");
     sc_scene_free(&s);
     free(text);
 }
@@ -881,6 +1058,11 @@ TEST(iges_malformed_degree_and_numbers)
     /* A number that overflows. */
     text = variant(1, "110,1.E999,0.2,0.,0.8,0.5,0.;", 0);
     CHECK(refused(text, "entity 110 (D 3)", "not a finite number"));
+    free(text);
+    /* An integer beyond what any count or pointer can be. */
+    text = variant(3, "102,2000000000,3,5;", 0);
+    CHECK(refused(text, "entity 102 (D 7): parameter 1: integer 2000000000 is out of range",
+                  position_of(text, "102,2000000000")));
     free(text);
     /* Zero weight on a rational surface. */
     text = variant(0, "128,1,1,1,1,0,0,0,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,0.,1.,1.,0.,0.,0.,1.,"
