@@ -201,6 +201,15 @@ int scg_audit_parse(const char *text, scg_audit_line *line, sc_error *err)
     return SC_OK;
 }
 
+static const scg_audit_line *find_line(const scg_audit_line *lines, int count,
+                                       const scg_audit_line *like)
+{
+    for (int i = 0; i < count; i++)
+        if (lines[i].stage == like->stage && !strcmp(lines[i].key, like->key))
+            return &lines[i];
+    return NULL;
+}
+
 int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_error *err)
 {
     *lines = NULL;
@@ -209,6 +218,7 @@ int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_erro
     if (!f)
         return sc_fail(err, path, 0, "cannot open the audit file");
     int cap = 0, line_no = 0, status = SC_OK;
+    int *line_of = NULL;      /* file line of each audit line, for messages */
     char text[1024];
     while (fgets(text, sizeof text, f)) {
         line_no++;
@@ -218,15 +228,27 @@ int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_erro
         if (*count == cap) {
             cap = cap ? 2 * cap : 64;
             *lines = sc_realloc(*lines, (size_t)cap, sizeof **lines);
+            line_of = sc_realloc(line_of, (size_t)cap, sizeof *line_of);
         }
-        if (scg_audit_parse(text, &(*lines)[*count], err) != SC_OK) {
+        scg_audit_line *line = &(*lines)[*count];
+        if (scg_audit_parse(text, line, err) != SC_OK) {
             snprintf(err->file, sizeof err->file, "%s", path);
             err->line = line_no;
             status = SC_FAIL;
             break;
         }
+        /* Compare mode pairs lines by key and stage: a repeated pair would
+         * be counted twice in its totals. */
+        const scg_audit_line *first = find_line(*lines, *count, line);
+        if (first) {
+            status = sc_fail(err, path, line_no, "%s %s already audited on line %d", line->key,
+                             scg_stage_audit_name(line->stage), line_of[first - *lines]);
+            break;
+        }
+        line_of[*count] = line_no;
         (*count)++;
     }
+    free(line_of);
     fclose(f);
     if (status != SC_OK) {
         free(*lines);
@@ -234,15 +256,6 @@ int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_erro
         *count = 0;
     }
     return status;
-}
-
-static const scg_audit_line *find_line(const scg_audit_line *lines, int count,
-                                       const scg_audit_line *like)
-{
-    for (int i = 0; i < count; i++)
-        if (lines[i].stage == like->stage && !strcmp(lines[i].key, like->key))
-            return &lines[i];
-    return NULL;
 }
 
 static double percent_change(long before, long after)

@@ -200,16 +200,76 @@ static void constant_text(const scg_inst *in, char *buf, size_t size)
         snprintf(buf + n, size - (size_t)n, ")");
 }
 
-/* Values printed where they are used rather than held in a local. */
-static int printed_in_place(scg_op op)
+/* Values printed where they are used rather than held in a local: leaves,
+ * components, and the loads that `load_in_place` marks. */
+static int printed_in_place(const scg_program *prog, const unsigned char *loads, scg_value v)
 {
-    return op == SCG_OP_CONST || op == SCG_OP_INPUT || op == SCG_OP_UNIFORM || op == SCG_OP_COMP;
+    scg_op op = prog->insts[v].op;
+    return op == SCG_OP_CONST || op == SCG_OP_INPUT || op == SCG_OP_UNIFORM || op == SCG_OP_COMP ||
+           loads[v];
+}
+
+/* Marks the loads that can be read as their variable at every use: not an
+ * array element, no store to the variable from the load to its last use,
+ * and no loop opening in between (its back edge would bring a later store
+ * before the use). `int v = iters; iters = v + n;` then reads
+ * `iters = iters + n;`. */
+static unsigned char *load_in_place(const scg_program *prog)
+{
+    unsigned char *loads = sc_alloc((size_t)prog->count, 1);
+    /* A component is printed where it is used, so its uses are its
+     * operand's too. */
+    int *last_use = sc_alloc((size_t)prog->count, sizeof *last_use);
+    for (int i = prog->count - 1; i > 0; i--) {
+        const scg_inst *in = &prog->insts[i];
+        int use = in->op == SCG_OP_COMP ? last_use[i] : i;
+        for (int k = 0; k < 4; k++)
+            if (in->arg[k] && last_use[in->arg[k]] < use)
+                last_use[in->arg[k]] = use;
+    }
+    for (int i = 1; i < prog->count; i++) {
+        const scg_inst *in = &prog->insts[i];
+        if (in->op != SCG_OP_LOAD || in->arg[1] || !last_use[i])
+            continue;
+        bool safe = true;
+        for (int j = i + 1; j < last_use[i] && safe; j++) {
+            const scg_inst *between = &prog->insts[j];
+            safe = between->op != SCG_OP_LOOP &&
+                   !(between->op == SCG_OP_STORE && between->arg[0] == in->arg[0]);
+        }
+        loads[i] = safe;
+    }
+    free(last_use);
+    return loads;
+}
+
+/* "x", "xz", "xyz" when every operand of the vector `in` is a component of
+ * one value (then *source is that value), else NULL. */
+static const char *swizzle(const scg_program *prog, const scg_inst *in, scg_value *source,
+                           char *buf)
+{
+    int n = scg_type_width(in->type);
+    *source = 0;
+    for (int k = 0; k < n; k++) {
+        const scg_inst *c = &prog->insts[in->arg[k]];
+        if (c->op != SCG_OP_COMP || (k > 0 && c->arg[0] != *source))
+            return NULL;
+        *source = c->arg[0];
+        buf[k] = "xyzw"[c->slot & 3];
+    }
+    buf[n] = 0;
+    return buf;
 }
 
 /* How operand v reads in an expression. */
-static void operand(const scg_program *prog, scg_value v, char *buf, size_t size)
+static void operand(const scg_program *prog, const unsigned char *loads, scg_value v, char *buf,
+                    size_t size)
 {
     const scg_inst *in = &prog->insts[v];
+    if (loads[v]) {
+        value_name(prog, in->arg[0], buf, size);
+        return;
+    }
     switch (in->op) {
     case SCG_OP_CONST:
         constant_text(in, buf, size);
@@ -222,7 +282,7 @@ static void operand(const scg_program *prog, scg_value v, char *buf, size_t size
         return;
     case SCG_OP_COMP: {
         char vec[128];
-        operand(prog, in->arg[0], vec, sizeof vec);
+        operand(prog, loads, in->arg[0], vec, sizeof vec);
         snprintf(buf, size, "%s.%c", vec, "xyzw"[in->slot & 3]);
         return;
     }
@@ -309,16 +369,17 @@ static const char *zero_of(scg_type type)
 }
 
 /* The right-hand side of value i. */
-static int expression(const scg_program *prog, int i, scg_text *out, sc_error *err)
+static int expression(const scg_program *prog, const unsigned char *loads, int i, scg_text *out,
+                      sc_error *err)
 {
     const scg_inst *in = &prog->insts[i];
     char a[160] = "", b[160] = "", c[160] = "";
     if (in->arg[0])
-        operand(prog, in->arg[0], a, sizeof a);
+        operand(prog, loads, in->arg[0], a, sizeof a);
     if (in->arg[1])
-        operand(prog, in->arg[1], b, sizeof b);
+        operand(prog, loads, in->arg[1], b, sizeof b);
     if (in->arg[2])
-        operand(prog, in->arg[2], c, sizeof c);
+        operand(prog, loads, in->arg[2], c, sizeof c);
     const char *symbol = binary_symbol(in->op), *call = call_name(in->op);
     switch (in->op) {
     case SCG_OP_FETCH: {
@@ -340,17 +401,25 @@ static int expression(const scg_program *prog, int i, scg_text *out, sc_error *e
         else
             scg_text_printf(out, "%s(%s, %s)", call, a, b);
         return SC_OK;
-    case SCG_OP_VEC:
+    case SCG_OP_VEC: {
+        char swz[5], source[160];
+        scg_value from;
+        if (swizzle(prog, in, &from, swz)) {
+            operand(prog, loads, from, source, sizeof source);
+            scg_text_printf(out, "%s.%s", source, swz);
+            return SC_OK;
+        }
         scg_text_printf(out, "%s(%s, %s", scg_type_name(in->type), a, b);
         if (in->arg[2])
             scg_text_printf(out, ", %s", c);
         if (in->arg[3]) {
             char d[160];
-            operand(prog, in->arg[3], d, sizeof d);
+            operand(prog, loads, in->arg[3], d, sizeof d);
             scg_text_printf(out, ", %s", d);
         }
         scg_text_append(out, ")");
         return SC_OK;
+    }
     case SCG_OP_SELECT:
         scg_text_printf(out, "%s ? %s : %s", a, b, c);
         return SC_OK;
@@ -381,14 +450,15 @@ static int expression(const scg_program *prog, int i, scg_text *out, sc_error *e
                    scg_op_name(in->op));
 }
 
-static void variable_declaration(const scg_program *prog, int i, scg_text *out)
+static void variable_declaration(const scg_program *prog, const unsigned char *loads, int i,
+                                 scg_text *out)
 {
     const scg_inst *in = &prog->insts[i];
     char name[64], init[160];
     value_name(prog, i, name, sizeof name);
     const char *type = scg_type_name(in->type);
     if (in->arg[0])
-        operand(prog, in->arg[0], init, sizeof init);
+        operand(prog, loads, in->arg[0], init, sizeof init);
     else
         snprintf(init, sizeof init, "%s", zero_of(in->type));
     if (in->slot <= 0) {
@@ -401,7 +471,8 @@ static void variable_declaration(const scg_program *prog, int i, scg_text *out)
     scg_text_append(out, ");\n");
 }
 
-static int function_body(const scg_program *prog, scg_text *out, sc_error *err)
+static int function_body(const scg_program *prog, const unsigned char *loads, scg_text *out,
+                         sc_error *err)
 {
     int depth = 1, block_start = 1;
     char a[160], b[160], c[160], name[64];
@@ -409,11 +480,11 @@ static int function_body(const scg_program *prog, scg_text *out, sc_error *err)
         const scg_inst *in = &prog->insts[i];
         a[0] = b[0] = c[0] = 0;
         if (in->arg[0])
-            operand(prog, in->arg[0], a, sizeof a);
+            operand(prog, loads, in->arg[0], a, sizeof a);
         if (in->arg[1])
-            operand(prog, in->arg[1], b, sizeof b);
+            operand(prog, loads, in->arg[1], b, sizeof b);
         if (in->arg[2])
-            operand(prog, in->arg[2], c, sizeof c);
+            operand(prog, loads, in->arg[2], c, sizeof c);
         switch (in->op) {
         case SCG_OP_NOP:
             continue;
@@ -445,13 +516,13 @@ static int function_body(const scg_program *prog, scg_text *out, sc_error *err)
         default:
             break;
         }
-        block_start = 0;
-        if (printed_in_place(in->op))
+        if (printed_in_place(prog, loads, i))
             continue;
+        block_start = 0;
         indent(out, depth);
         switch (in->op) {
         case SCG_OP_VAR:
-            variable_declaration(prog, i, out);
+            variable_declaration(prog, loads, i, out);
             break;
         case SCG_OP_STORE:
             if (in->arg[2])
@@ -468,7 +539,7 @@ static int function_body(const scg_program *prog, scg_text *out, sc_error *err)
         default:
             value_name(prog, i, name, sizeof name);
             scg_text_printf(out, "%s %s = ", scg_type_name(in->type), name);
-            if (expression(prog, i, out, err) != SC_OK)
+            if (expression(prog, loads, i, out, err) != SC_OK)
                 return SC_FAIL;
             scg_text_append(out, ";\n");
         }
@@ -492,7 +563,10 @@ int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error
             sep = ", ";
         }
     scg_text_append(out, ")\n{\n");
-    if (function_body(prog, out, err) != SC_OK)
+    unsigned char *loads = load_in_place(prog);
+    int status = function_body(prog, loads, out, err);
+    free(loads);
+    if (status != SC_OK)
         return SC_FAIL;
     scg_text_append(out, "}\n");
     return SC_OK;

@@ -100,8 +100,8 @@ static int run_error(const scg_interp *it, int i, const char *what, sc_error *er
 {
     char key[SCG_KEY_MAX];
     scg_key_format(&it->prog->key, key, sizeof key);
-    return sc_fail_key(err, key, "interpreting %s: instruction v%d (%s): %s", key, i,
-                       scg_op_name(it->prog->insts[i].op), what);
+    return sc_fail_key(err, key, "instruction v%d (%s): %s", i, scg_op_name(it->prog->insts[i].op),
+                       what);
 }
 
 int scg_interp_run(scg_interp *it, const scg_interp_env *env, scg_interp_result *res,

@@ -235,6 +235,7 @@ void scg_dump_ir(FILE *f, const scg_program *prog);
 
 /* ---- passes: each returns true when it changed the program ---- */
 bool scg_opt_fold(scg_program *prog);   /* constant folding, identities */
+bool scg_opt_copy(scg_program *prog);   /* loads of variables whose value is known */
 bool scg_opt_cse(scg_program *prog);    /* common subexpressions (scoped) */
 bool scg_opt_dce(scg_program *prog);    /* dead code and unused variables */
 /* Removes NOP instructions and renumbers values (used by the passes). */
@@ -242,7 +243,7 @@ void scg_compact(scg_program *prog);
 
 /* ---- building a program for a key ---- */
 /* Called after every stage: "build" first, then after each pass that made
- * progress ("fold", "cse", "dce"), with the program as it then is. */
+ * progress ("fold", "copy", "cse", "dce"), with the program as it then is. */
 typedef void (*scg_stage_fn)(const char *stage, const scg_program *prog,
                              void *user);
 

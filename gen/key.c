@@ -171,7 +171,7 @@ static int parse_tolerance(const char *s, int *milli)
         digits++;
     }
     *milli = whole * 1000 + frac;
-    return *milli >= 1 ? 0 : -1;
+    return *milli >= 1 && *milli <= 1000 * 1000 ? 0 : -1;
 }
 
 int scg_key_parse(const char *text, scg_key *key, sc_error *err)
@@ -324,6 +324,6 @@ int scg_key_check(const scg_key *key, sc_error *err)
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
     if (missing)
-        return sc_fail_key(err, text, "variant key '%s': %s not implemented yet", text, missing);
+        return sc_fail_key(err, text, "%s not implemented yet", missing);
     return SC_OK;
 }

@@ -601,8 +601,12 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
      * keeps the nearest of all hits. */
     hit = scg_and(b, hit, inside(b, uv, c->rec_lo, c->rec_hi));
     hit = scg_and(b, hit, scg_lt(b, c->zero, t));
-    if (behind)
-        hit = scg_and(b, hit, scg_not(b, behind));
+    if (behind) {
+        scg_name(b, "in_front");
+        scg_value in_front = scg_not(b, behind);
+        scg_name(b, "hit");
+        hit = scg_and(b, hit, in_front);
+    }
     if (key->ert == SCG_ERT_BOTH)
         hit = scg_and(b, hit, scg_lt(b, t, t_limit));
     scg_name(b, "normal");

@@ -1,7 +1,8 @@
 /* opt_fold.c — constant folding and algebraic identities. Operations whose
  * operands are all constants become constants (evaluated with the
  * interpreter's own arithmetic, so folding never changes a result), and
- * x+0, x-0, x·1, x/1, --x, comp(vec(…)), select on a constant and logic on
+ * x+0, x-0, x·1, x/1 (float and int), x·0 (int), --x, !!x, comp(vec(…)),
+ * vecN(s.x, s.y, …) of a vecN s, select on a constant and logic on
  * constants collapse to one of their operands. */
 #include <stdlib.h>
 #include <string.h>
@@ -24,8 +25,39 @@ static bool is_const_value(const scg_program *p, scg_value v, float x)
     return true;
 }
 
+/* True when v is the int constant x. */
+static bool is_const_int(const scg_program *p, scg_value v, int x)
+{
+    return is_const(p, v) && p->insts[v].type == SCG_INT && p->insts[v].imm.i == x;
+}
+
+/* True when v is the number x: every component of a float constant, or an
+ * int constant. */
+static bool is_number(const scg_program *p, scg_value v, int x)
+{
+    return is_const_value(p, v, (float)x) || is_const_int(p, v, x);
+}
+
+/* The vector `in` gathers whole and in order — vecN(s.x, s.y, …) with s
+ * itself a vecN — or 0. */
+static scg_value whole_vector(const scg_program *p, const scg_inst *in)
+{
+    int n = scg_type_width(in->type);
+    const scg_inst *first = &p->insts[in->arg[0]];
+    if (first->op != SCG_OP_COMP || p->insts[first->arg[0]].type != in->type)
+        return 0;
+    for (int k = 0; k < n; k++) {
+        const scg_inst *c = &p->insts[in->arg[k]];
+        if (c->op != SCG_OP_COMP || c->arg[0] != first->arg[0] || c->slot != k)
+            return 0;
+    }
+    return first->arg[0];
+}
+
 /* The operand an identity reduces `in` to, or 0. Only same-typed
- * replacements: x·1 with a vector 1 and a float x would change the type. */
+ * replacements: x·1 with a vector 1 and a float x would change the type.
+ * Every identity is exact in float as in int (x·0 is not: NaN, ∞ and -0,
+ * so it is folded for ints only). */
 static scg_value identity(const scg_program *p, const scg_inst *in)
 {
     scg_value a = in->arg[0], b = in->arg[1];
@@ -33,25 +65,32 @@ static scg_value identity(const scg_program *p, const scg_inst *in)
     const scg_inst *ia = a ? &p->insts[a] : NULL;
     switch (in->op) {
     case SCG_OP_ADD:
-        if (is_const_value(p, b, 0.0f) && ia->type == t) return a;
-        if (is_const_value(p, a, 0.0f) && p->insts[b].type == t) return b;
+        if (is_number(p, b, 0) && ia->type == t) return a;
+        if (is_number(p, a, 0) && p->insts[b].type == t) return b;
         break;
     case SCG_OP_SUB:
-        if (is_const_value(p, b, 0.0f) && ia->type == t) return a;
+        if (is_number(p, b, 0) && ia->type == t) return a;
         break;
     case SCG_OP_MUL:
-        if (is_const_value(p, b, 1.0f) && ia->type == t) return a;
-        if (is_const_value(p, a, 1.0f) && p->insts[b].type == t) return b;
+        if (is_number(p, b, 1) && ia->type == t) return a;
+        if (is_number(p, a, 1) && p->insts[b].type == t) return b;
+        if (is_const_int(p, a, 0)) return a;
+        if (is_const_int(p, b, 0)) return b;
         break;
     case SCG_OP_DIV:
-        if (is_const_value(p, b, 1.0f) && ia->type == t) return a;
+        if (is_number(p, b, 1) && ia->type == t) return a;
         break;
     case SCG_OP_NEG:
         if (ia->op == SCG_OP_NEG) return ia->arg[0];
         break;
+    case SCG_OP_NOT:
+        if (ia->op == SCG_OP_NOT) return ia->arg[0];
+        break;
     case SCG_OP_COMP:
         if (ia->op == SCG_OP_VEC) return ia->arg[in->slot];
         break;
+    case SCG_OP_VEC:
+        return whole_vector(p, in);
     case SCG_OP_SELECT:
         if (is_const(p, a)) return ia->imm.i ? b : in->arg[2];
         if (b == in->arg[2]) return b;

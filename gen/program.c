@@ -8,10 +8,12 @@ typedef struct pass {
     bool (*run)(scg_program *);
 } pass;
 
-/* The pass list. Folding first exposes equal constants to CSE; CSE
- * leaves duplicates dead for DCE. */
+/* The pass list. Folding first exposes equal constants to CSE; copy
+ * propagation hands folding and CSE the values stored rather than loads;
+ * CSE leaves duplicates dead for DCE. */
 static const pass passes[] = {
     {"fold", scg_opt_fold},
+    {"copy", scg_opt_copy},
     {"cse", scg_opt_cse},
     {"dce", scg_opt_dce},
 };

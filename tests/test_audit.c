@@ -272,6 +272,18 @@ TEST(audit_command)
     free(errors);
     snprintf(cmd, sizeof cmd, "%s audit --compare %s", test_cli, bad);
     CHECK_INT(test_run(cmd, NULL, NULL), 2);
+
+    /* A saved audit that names a shader twice would count it twice in the
+     * totals: a file and itself concatenated is refused at the repeat, the
+     * fourth of its six lines. */
+    snprintf(cmd, sizeof cmd,
+             "(cat %s/old.audit %s/old.audit | grep -v '^ ' > %s/twice.audit && "
+             "%s audit --compare %s/old.audit %s/twice.audit)",
+             test_tmpdir(), test_tmpdir(), test_tmpdir(), test_cli, test_tmpdir(), test_tmpdir());
+    CHECK_INT(test_run(cmd, NULL, &errors), 1);
+    CHECK_CONTAINS(errors, "twice.audit:4: ");
+    CHECK_CONTAINS(errors, "already audited on line 1");
+    free(errors);
 }
 
 TEST(audit_scene)

@@ -1,6 +1,7 @@
 /* test_kernels.c — the generated intersection programs, run on the CPU by
  * the IR interpreter in single precision, against a double-precision
- * reference (the NURBS core's evaluation and a double Newton polish): for
+ * reference (the NURBS core's evaluation and the reference ray caster's
+ * hits, which depend on no starting value): for
  * degree pairs 1×1 … 7×7, rational and not, random patches far from the
  * origin, random rays with |cos(ray, normal)| >= 0.1 started from the
  * sub-patch midpoint of a 4×4 uniform subdivision. */
@@ -17,8 +18,10 @@
 #define FOOTPRINT (2.0 * 0.41421356237309503 / 512.0) /* 45° fov, 512 rows */
 
 typedef struct kstats {
-    int rays, hits, misses, failures;
-    double worst_ratio;   /* largest error / bound seen */
+    int rays, hits, misses;
+    int far_sheet;             /* converged to a farther hit than one in reach */
+    int nearest_out_of_reach;  /* converged to a farther hit; the nearest is out of reach */
+    double worst_ratio;        /* largest error / bound seen */
 } kstats;
 
 /* A random patch around a far-away centre: a jittered grid with random
@@ -29,6 +32,8 @@ static void random_surface(sc_surface *s, int p, int q, int spans, bool rational
 {
     int nu = p + spans, nv = q + spans;
     sc_surface_alloc(s, p, q, nu, nv);
+    memset(s->xform, 0, sizeof s->xform);
+    s->xform[0] = s->xform[5] = s->xform[10] = 1.0;
     for (int k = 0; k < nu + p + 1; k++)
         s->knots_u[k] = k <= p ? 0.0 : k >= nu ? 1.0 : (double)(k - p) / spans;
     for (int k = 0; k < nv + q + 1; k++)
@@ -105,37 +110,34 @@ static double ray_distance(const double *x, const double *eye, const double *d)
     return sqrt(dot3(c, c));
 }
 
-/* Double-precision Newton on the ray from (u, v): the reference hit. */
-static bool polish(const sc_surface *s, const double *eye, const double *d, double u, double v,
-                   double hit[3])
+/* Every hit of the ray eye + t·d (d unit) on the surface of `rc`, nearest
+ * first: the reference ray caster's nearest hit, then again from just
+ * beyond each hit. Hits closer together than `beyond` along the ray count
+ * once; they are closer than any bound the test checks. */
+static int reference_hits(const sc_refcast *rc, const double *eye, const double *d, double beyond,
+                          sc_ref_hit *hits, int max)
 {
-    double n1[3], n2[3], a[3] = {fabs(d[0]) > fabs(d[2]) ? -d[1] : 0,
-                                 fabs(d[0]) > fabs(d[2]) ? d[0] : -d[2],
-                                 fabs(d[0]) > fabs(d[2]) ? 0 : d[1]};
-    double len = sqrt(dot3(a, a));
-    for (int k = 0; k < 3; k++)
-        n1[k] = a[k] / len;
-    cross3(d, n1, n2);
-    for (int it = 0; it < 40; it++) {
-        double p[3], su[3], sv[3], r[3];
-        sc_surface_eval(s, u, v, p, su, sv);
+    double from[3] = {eye[0], eye[1], eye[2]};
+    int n = 0;
+    while (n < max) {
+        sc_refcast_trace(rc, from, d, &hits[n]);
+        if (hits[n].surface < 0)
+            break;
         for (int k = 0; k < 3; k++)
-            r[k] = p[k] - eye[k];
-        double f1 = dot3(n1, r), f2 = dot3(n2, r);
-        double a11 = dot3(n1, su), a12 = dot3(n1, sv), a21 = dot3(n2, su), a22 = dot3(n2, sv);
-        double det = a11 * a22 - a12 * a21;
-        if (det == 0)
-            return false;
-        double du = (a22 * f1 - a12 * f2) / det, dv = (a11 * f2 - a21 * f1) / det;
-        u -= du;
-        v -= dv;
-        if (fabs(du) + fabs(dv) < 1e-14) {
-            sc_surface_eval(s, u, v, hit, NULL, NULL);
-            return true;
-        }
+            from[k] = hits[n].point[k] + beyond * d[k];
+        n++;
     }
-    sc_surface_eval(s, u, v, hit, NULL, NULL);
-    return ray_distance(hit, eye, d) < 1e-9;
+    return n;
+}
+
+enum { MAX_REF_HITS = 8 };
+
+/* True when (u, v) lies in the sub-patch domain `dom` (u0, u1, v0, v1)
+ * widened by the overlap the iteration may use. */
+static bool in_reach(const float dom[4], double u, double v)
+{
+    double mu = (dom[1] - dom[0]) * SCG_DOMAIN_OVERLAP, mv = (dom[3] - dom[2]) * SCG_DOMAIN_OVERLAP;
+    return u >= dom[0] - mu && u <= dom[1] + mu && v >= dom[2] - mv && v <= dom[3] + mv;
 }
 
 /* Runs `rays` random rays through the key's program on surface s. Returns
@@ -172,7 +174,14 @@ static bool run_rays(const char *key_text, const sc_surface *s, int rays,
     sc_surface_bounds(s, lo, hi);
     double bbox = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    bool ok = true;
+    sc_scene scene;
+    sc_scene_init(&scene);
+    sc_surface_copy(sc_scene_add_surface(&scene), s);
+    sc_refcast *rc = NULL;
+    if (sc_refcast_prepare(&scene, &rc, &err) != SC_OK) {
+        fprintf(stderr, "  %s\n", err.message);
+    }
+    bool ok = rc != NULL;
     for (int r = 0; r < rays && ok; r++) {
         double u = test_rand(rng), v = test_rand(rng), p[3], su[3], sv[3], n[3], d[3];
         sc_surface_eval(s, u, v, p, su, sv);
@@ -218,25 +227,48 @@ static bool run_rays(const char *key_text, const sc_surface *s, int rays,
             hu = (hu - rect[0]) / (rect[1] - rect[0]);
             hv = (hv - rect[2]) / (rect[3] - rect[2]);
         }
-        double at[3], ref[3];
+        double at[3];
         sc_surface_eval(s, hu, hv, at, NULL, NULL);
         double e_uv = ray_distance(at, eye, d);
+        /* The reference: every hit of the ray on the patch, the nearest
+         * first. A converged hit must be one of them (the last iterate may
+         * lie one step outside the sub-patch domain plus overlap, newton.c,
+         * and the program accepts it anywhere on its record). It should be
+         * the nearest when that one is in reach; when it is not, the hull
+         * of the sub-patch holding it finds it, and the depth test keeps
+         * it. */
+        sc_ref_hit hits[MAX_REF_HITS];
+        int nhits = reference_hits(rc, eye, d, 1e-6 * bbox, hits, MAX_REF_HITS);
         double e_hit = 1e300;
-        if (polish(s, eye, d, hu, hv, ref)) {
+        int matched = -1;
+        for (int h = 0; h < nhits; h++) {
             double diff[3];
             for (int k = 0; k < 3; k++)
-                diff[k] = res.outputs[SCG_OUT_POINT][k] - (ref[k] - g.centre[k]);
-            e_hit = sqrt(dot3(diff, diff));
+                diff[k] = res.outputs[SCG_OUT_POINT][k] - (hits[h].point[k] - g.centre[k]);
+            double e = sqrt(dot3(diff, diff));
+            if (e < e_hit) {
+                e_hit = e;
+                matched = h;
+            }
         }
         double worst = fmax(e_uv, e_hit) / bound;
         st->worst_ratio = fmax(st->worst_ratio, worst);
+        if (worst <= 1 && matched > 0) {
+            /* A true intersection, but not the nearest: the far sheet when
+             * the nearest was in reach too. */
+            if (in_reach(dom, hits[0].u, hits[0].v))
+                st->far_sheet++;
+            else
+                st->nearest_out_of_reach++;
+        }
         if (worst > 1 || res.outputs[SCG_OUT_SURFACE][0] != 7) {
-            st->failures++;
             fprintf(stderr, "  %s: ray %d: uv error %.3g, hit error %.3g, bound %.3g\n", key_text,
                     r, e_uv, e_hit, bound);
             ok = false;
         }
     }
+    sc_refcast_free(rc);
+    sc_scene_free(&scene);
     free(g.points);
     free(g.knots);
     scg_interp_free(it);
@@ -248,7 +280,7 @@ static bool run_rays(const char *key_text, const sc_surface *s, int rays,
  * `kind` "bez" or "nurbs" (with `spans` knot spans per direction), `eval`
  * dc, bern or loop (then the key's degrees are "dyn"). */
 static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int spans, int iters,
-                         int rays_per_case, double max_miss)
+                         int rays_per_case, double max_miss, double max_far)
 {
     unsigned long long rng = 12345;
     kstats total = {0};
@@ -272,13 +304,18 @@ static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int
                 total.rays += st.rays;
                 total.hits += st.hits;
                 total.misses += st.misses;
+                total.far_sheet += st.far_sheet;
+                total.nearest_out_of_reach += st.nearest_out_of_reach;
                 total.worst_ratio = fmax(total.worst_ratio, st.worst_ratio);
             }
     fprintf(stderr, "  %s %s %dx%d..%dx%d it%d: %d rays, %d converged hits, %.2f%% not converged, "
-            "worst error %.2f of the bound\n", kind, eval, lo, lo, hi, hi, iters, total.rays,
-            total.hits, 100.0 * total.misses / total.rays, total.worst_ratio);
+            "%.2f%% on a far sheet, %d with the nearest hit out of reach, worst error %.3g of the "
+            "bound\n", kind, eval, lo, lo, hi, hi, iters, total.rays, total.hits,
+            100.0 * total.misses / total.rays, 100.0 * total.far_sheet / total.hits,
+            total.nearest_out_of_reach, total.worst_ratio);
     CHECK(total.rays > 0);
     CHECK((double)total.misses / total.rays <= max_miss);
+    CHECK((double)total.far_sheet / total.hits <= max_far);
 }
 
 /* The rays that still do not converge are geometric, not numeric: random
@@ -286,42 +323,48 @@ static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int
  * midpoint out of the sub-patch (plus overlap) or towards another sheet;
  * the same rays fail with every evaluation form (dc, bern, loop). Wavier
  * patches (more control points per sub-patch: NURBS with 3 spans, degree
- * 12) fail more often. Bounds hold for every converged hit. */
+ * 12) fail more often. Bounds hold for every converged hit.
+ *
+ * Newton finds a root, not the nearest one: when the ray crosses the
+ * sub-patch twice (it is aimed at a point that a fold of the same
+ * sub-patch hides), the iteration from the midpoint may converge to the
+ * hidden crossing. Those hits are true intersections and are counted as
+ * far-sheet hits, about 0.3 % of the converged ones. */
 
 /* The sweep: Bézier 1×1 … 7×7, rational and not, unrolled. */
 TEST(kernel_newton_bezier_degrees_dc)
 {
-    degree_sweep("bez", "dc", 1, 7, 1, 8, 200, 0.02);
+    degree_sweep("bez", "dc", 1, 7, 1, 8, 200, 0.02, 0.01);
 }
 
 TEST(kernel_newton_bezier_degrees_basis)
 {
-    degree_sweep("bez", "bern", 1, 7, 1, 8, 50, 0.02);
+    degree_sweep("bez", "bern", 1, 7, 1, 8, 50, 0.02, 0.01);
 }
 
 /* De Boor with the span search: three spans per direction, so that the
  * sub-patches start in different spans and Newton crosses knots. */
 TEST(kernel_newton_nurbs_degrees)
 {
-    degree_sweep("nurbs", "dc", 1, 5, 3, 8, 60, 0.04);
+    degree_sweep("nurbs", "dc", 1, 7, 3, 8, 60, 0.04, 0.01);
 }
 
 /* The generic program with runtime loops, degrees from the record. */
 TEST(kernel_newton_generic_bezier)
 {
-    degree_sweep("bez", "loop", 1, 6, 1, 8, 30, 0.02);
+    degree_sweep("bez", "loop", 1, 7, 1, 8, 30, 0.02, 0.01);
 }
 
 TEST(kernel_newton_generic_nurbs)
 {
-    degree_sweep("nurbs", "loop", 2, 4, 3, 8, 40, 0.04);
+    degree_sweep("nurbs", "loop", 1, 7, 3, 8, 40, 0.04, 0.01);
 }
 
 /* High degrees as in CAD data (12×12), unrolled and generic. */
 TEST(kernel_newton_high_degree)
 {
-    degree_sweep("bez", "dc", 12, 12, 1, 8, 300, 0.12);
-    degree_sweep("nurbs", "loop", 12, 12, 2, 8, 60, 0.12);
+    degree_sweep("bez", "dc", 12, 12, 1, 8, 300, 0.12, 0.03);
+    degree_sweep("nurbs", "loop", 12, 12, 2, 8, 60, 0.12, 0.03);
 }
 
 /* A pixel of the teapot's silhouette that the GPU path used to miss: at

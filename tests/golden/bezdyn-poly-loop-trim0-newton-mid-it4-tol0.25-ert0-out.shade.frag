@@ -67,8 +67,8 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     int v45 = int(record_33.y);
     int v47 = int(record_36.z);
     int v49 = int(record_36.w);
-    vec2 v53 = vec2(sc_domain.x, sc_domain.z);
-    vec2 v56 = vec2(sc_domain.y, sc_domain.w);
+    vec2 v53 = sc_domain.xz;
+    vec2 v56 = sc_domain.yw;
     vec2 v58 = v56 - v53;
     vec2 v59 = v58 * 0.1;
     vec2 uv_lo_60 = v53 - v59;
@@ -82,9 +82,7 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     bool done_73 = false;
 
     for (int v74 = 0; v74 < 4; v74++) {
-        bool v75 = done_73;
-
-        if (v75) {
+        if (done_73) {
             break;
         }
         vec2 uv_79 = uv_70;
@@ -120,15 +118,13 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
                 float v109 = v82[v104];
                 float v110 = v107 + v108;
                 float v111 = v109 / v110;
-                float v112 = v103;
                 float v113 = v107 * v111;
-                float v114 = v112 + v113;
+                float v114 = v103 + v113;
                 v82[v104] = v114;
                 float v116 = v108 * v111;
                 v103 = v116;
             }
-            float v119 = v103;
-            v82[v92] = v119;
+            v82[v92] = v103;
         }
         float v122 = float(v47);
         int v123 = v47 + 1;
@@ -176,15 +172,13 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
                 float v161 = v84[v156];
                 float v162 = v159 + v160;
                 float v163 = v161 / v162;
-                float v164 = v155;
                 float v165 = v159 * v163;
-                float v166 = v164 + v165;
+                float v166 = v155 + v165;
                 v84[v156] = v166;
                 float v168 = v160 * v163;
                 v155 = v168;
             }
-            float v171 = v155;
-            v84[v144] = v171;
+            v84[v144] = v155;
         }
         float v174 = float(v49);
         int v175 = v49 + 1;
@@ -223,39 +217,29 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
                 int v206 = v202 + v205;
                 vec4 v207 = texelFetch(sc_points, v206);
                 float v208 = v82[v205];
-                vec4 v209 = v203;
                 vec4 v210 = v207 * v208;
-                vec4 v211 = v209 + v210;
+                vec4 v211 = v203 + v210;
                 v203 = v211;
                 float v213 = v83[v205];
-                vec4 v214 = v204;
                 vec4 v215 = v207 * v213;
-                vec4 v216 = v214 + v215;
+                vec4 v216 = v204 + v215;
                 v204 = v216;
             }
             float v219 = v84[v200];
             float v220 = v85[v200];
-            vec4 v221 = v203;
-            vec4 v222 = v204;
-            vec4 v223 = v192;
-            vec4 v224 = v221 * v219;
-            vec4 v225 = v223 + v224;
+            vec4 v224 = v203 * v219;
+            vec4 v225 = v192 + v224;
             v192 = v225;
-            vec4 v227 = v193;
-            vec4 v228 = v222 * v219;
-            vec4 v229 = v227 + v228;
+            vec4 v228 = v204 * v219;
+            vec4 v229 = v193 + v228;
             v193 = v229;
-            vec4 v231 = v194;
-            vec4 v232 = v221 * v220;
-            vec4 v233 = v231 + v232;
+            vec4 v232 = v203 * v220;
+            vec4 v233 = v194 + v232;
             v194 = v233;
         }
-        vec4 S_236 = v192;
-        vec4 Su_237 = v193;
-        vec4 Sv_238 = v194;
-        vec3 v242 = vec3(S_236.x, S_236.y, S_236.z);
-        vec3 v246 = vec3(Su_237.x, Su_237.y, Su_237.z);
-        vec3 v250 = vec3(Sv_238.x, Sv_238.y, Sv_238.z);
+        vec3 v242 = v192.xyz;
+        vec3 v246 = v193.xyz;
+        vec3 v250 = v194.xyz;
         float F_251 = dot(n1_18, v242);
         float F_252 = F_251 + d1_21;
         float F_253 = dot(n2_19, v242);
@@ -294,9 +278,8 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
         vec2 uv_next_287 = uv_79 - step_280;
         vec2 v288 = singular_272 ? uv_79 : uv_next_287;
         uv_70 = v288;
-        int v290 = iters_71;
         int v291 = singular_272 ? 0 : 1;
-        int v292 = v290 + v291;
+        int v292 = iters_71 + v291;
         iters_71 = v292;
         bool stop_294 = converged_286 || singular_272;
         bool v296 = uv_lo_62.x <= uv_79.x;
@@ -351,15 +334,13 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
             float v350 = v323[v345];
             float v351 = v348 + v349;
             float v352 = v350 / v351;
-            float v353 = v344;
             float v354 = v348 * v352;
-            float v355 = v353 + v354;
+            float v355 = v344 + v354;
             v323[v345] = v355;
             float v357 = v349 * v352;
             v344 = v357;
         }
-        float v360 = v344;
-        v323[v333] = v360;
+        v323[v333] = v344;
     }
     float v363 = float(v47);
     int v364 = v47 + 1;
@@ -407,15 +388,13 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
             float v402 = v325[v397];
             float v403 = v400 + v401;
             float v404 = v402 / v403;
-            float v405 = v396;
             float v406 = v400 * v404;
-            float v407 = v405 + v406;
+            float v407 = v396 + v406;
             v325[v397] = v407;
             float v409 = v401 * v404;
             v396 = v409;
         }
-        float v412 = v396;
-        v325[v385] = v412;
+        v325[v385] = v396;
     }
     float v415 = float(v49);
     int v416 = v49 + 1;
@@ -454,39 +433,29 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
             int v447 = v443 + v446;
             vec4 v448 = texelFetch(sc_points, v447);
             float v449 = v323[v446];
-            vec4 v450 = v444;
             vec4 v451 = v448 * v449;
-            vec4 v452 = v450 + v451;
+            vec4 v452 = v444 + v451;
             v444 = v452;
             float v454 = v324[v446];
-            vec4 v455 = v445;
             vec4 v456 = v448 * v454;
-            vec4 v457 = v455 + v456;
+            vec4 v457 = v445 + v456;
             v445 = v457;
         }
         float v460 = v325[v441];
         float v461 = v326[v441];
-        vec4 v462 = v444;
-        vec4 v463 = v445;
-        vec4 v464 = v433;
-        vec4 v465 = v462 * v460;
-        vec4 v466 = v464 + v465;
+        vec4 v465 = v444 * v460;
+        vec4 v466 = v433 + v465;
         v433 = v466;
-        vec4 v468 = v434;
-        vec4 v469 = v463 * v460;
-        vec4 v470 = v468 + v469;
+        vec4 v469 = v445 * v460;
+        vec4 v470 = v434 + v469;
         v434 = v470;
-        vec4 v472 = v435;
-        vec4 v473 = v462 * v461;
-        vec4 v474 = v472 + v473;
+        vec4 v473 = v444 * v461;
+        vec4 v474 = v435 + v473;
         v435 = v474;
     }
-    vec4 S_477 = v433;
-    vec4 Su_478 = v434;
-    vec4 Sv_479 = v435;
-    vec3 point_483 = vec3(S_477.x, S_477.y, S_477.z);
-    vec3 v487 = vec3(Su_478.x, Su_478.y, Su_478.z);
-    vec3 v491 = vec3(Sv_479.x, Sv_479.y, Sv_479.z);
+    vec3 point_483 = v433.xyz;
+    vec3 v487 = v434.xyz;
+    vec3 v491 = v435.xyz;
     float miss_492 = dot(n1_18, point_483);
     float miss_493 = miss_492 + d1_21;
     float miss_494 = dot(n2_19, point_483);
@@ -531,8 +500,8 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec3 normal_535 = normal_532 / normal_533;
     vec3 normal_536 = -axis_16;
     vec3 normal_537 = normal_534 ? normal_535 : normal_536;
-    vec2 uv_surface_540 = vec2(record_39.x, record_39.z);
-    vec2 uv_surface_543 = vec2(record_39.y, record_39.w);
+    vec2 uv_surface_540 = record_39.xz;
+    vec2 uv_surface_543 = record_39.yw;
     vec2 uv_surface_544 = uv_surface_543 - uv_surface_540;
     vec2 uv_surface_545 = uv_final_320 * uv_surface_544;
     vec2 uv_surface_546 = uv_surface_540 + uv_surface_545;
@@ -541,8 +510,7 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     t = t_499;
     point = point_483;
     normal = normal_537;
-    int v552 = iters_71;
-    iters = v552;
+    iters = iters_71;
     surface = v43;
 }
 
