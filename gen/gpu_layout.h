@@ -52,21 +52,30 @@ enum { SCG_RECORD_TEXELS = 4 };
  * texel +3 .w. Offsets inside a block are relative to its first texel, so
  * a block can be placed anywhere. Coordinates are normalised to the
  * surface's domain, [0,1]², so that float precision is the same for every
- * domain. For trim degree N (the key's):
- *   +0: (piece count P, parity bias, grid columns G_u, grid rows G_v)
+ * domain. For trim degree N (the key's), in this order:
+ *   +0: (loop count L, parity bias, grid columns G_u, grid rows G_v)
  *   +1: (scale_u, scale_v, offset_u, offset_v): normalised (u, v) =
  *       surface (u, v) · scale + offset
- *   +2 + k·(N+2): piece k, SCG_TRIM_PIECE_TEXELS(N) texels:
+ *   cells, from +2, G_u·G_v texels: the cell of column i, row j
+ *       (u·G_u in [i, i+1), v·G_v in [j, j+1); the outer columns and rows
+ *       reach to infinity) is texel 2 + j·G_u + i:
+ *       (parity, entry offset, entry count, 0); parity (bias included) is
+ *       that of the crossings with the pieces wholly right of the cell at
+ *       the row's bottom.
+ *   loops, from +2 + G_u·G_v, SCG_TRIM_LOOP_TEXELS each, in scene order
+ *       (loops left without pieces are left out):
+ *       (u_min, u_max, v_lo, v_hi): the box of the loop's pieces; a point
+ *       with v outside [v_lo, v_hi) or u outside [u_min, u_max) gets an
+ *       even number of crossings from the loop (u_min is -FLT_MAX for a
+ *       loop whose pieces' ends do not pair up, so that it is never
+ *       skipped from the left),
+ *       (first piece offset, piece count, 0, 0): its pieces are
+ *       consecutive.
+ *   pieces, after the loops, SCG_TRIM_PIECE_TEXELS(N) texels each:
  *       (v_lo, v_hi, u_min, u_max), then N+1 homogeneous control points
  *       (u·w, v·w, w, _) in order of increasing v; the first point's .w is
  *       u_lo, the u of the end point at v_lo. The piece covers
  *       v_lo <= v < v_hi, its u lies in [u_min, u_max].
- *   cells, from +2 + P·(N+2), G_u·G_v texels: the cell of column i, row j
- *       (u·G_u in [i, i+1), v·G_v in [j, j+1); the outer columns and rows
- *       reach to infinity) is texel j·G_u + i:
- *       (parity, entry offset, entry count, 0); parity (bias included) is
- *       that of the crossings with the pieces wholly right of the cell at
- *       the row's bottom.
  *   entries, SCG_TRIM_ENTRY_TEXELS each, from the cell's entry offset:
  *       (v_lo, v_hi, u_min, u_max), (piece offset, 0, 0, 0): a piece that
  *       may pass through the cell, with the bounds of u over its part in
@@ -76,7 +85,7 @@ enum { SCG_RECORD_TEXELS = 4 };
  * A point is kept when the count of pieces crossed by the ray from it
  * towards +u, plus the parity bias, is odd (bias 1 when the surface has
  * only holes, 0 when it has an outer loop). */
-enum { SCG_TRIM_HEADER_TEXELS = 2, SCG_TRIM_ENTRY_TEXELS = 2 };
+enum { SCG_TRIM_HEADER_TEXELS = 2, SCG_TRIM_LOOP_TEXELS = 2, SCG_TRIM_ENTRY_TEXELS = 2 };
 #define SCG_TRIM_PIECE_TEXELS(degree) ((degree) + 2)
 /* Offsets are floats: a block stays below 2^24 texels. */
 #define SCG_TRIM_MAX_TEXELS (1 << 24)
@@ -94,14 +103,19 @@ typedef enum scg_input_slot {
      * [0,1]² for `bez`, surface parameters for `nurbs`). */
     SCG_IN_UV0,
     /* vec4, flat: the hull's sub-patch domain (u0, u1, v0, v1), in the same
-     * parameters. `mid` starts begin at its centre; every method stops when
-     * (u, v) leaves it by more than SCG_DOMAIN_OVERLAP of its size. */
+     * parameters. `mid` starts begin at its centre. The iteration stops
+     * when two iterates in a row lie outside it widened by
+     * SCG_DOMAIN_OVERLAP of its size (one iterate may step out and back:
+     * near a patch edge a converging step can cross it). */
     SCG_IN_DOMAIN,
     /* int, flat: record index (see SCG_TEX_RECORDS). */
     SCG_IN_RECORD,
     /* float: early ray termination — the ray parameter t (same units as
      * SCG_IN_RAY_DIR) of the nearest surface already drawn on this pixel, or
-     * a huge value (3.0e38) when there is none. Read only by ert1/ert2 keys. */
+     * a huge value (3.0e38) when there is none. Read only by ert1/ert2 keys.
+     * Not a vertex-stage output: the fragment program's main() derives it
+     * from the sc_nearest_t texture (distance along the unit ray at
+     * gl_FragCoord, divided by length(sc_ray_dir)) before the intersection. */
     SCG_IN_T_LIMIT,
     SCG_INPUT_COUNT
 } scg_input_slot;
@@ -120,7 +134,10 @@ typedef enum scg_uniform_slot {
 
 /* ---- results of the intersection function ---- */
 typedef enum scg_output_slot {
-    SCG_OUT_HIT = 0,   /* bool: converged inside the domain, in front of the
+    SCG_OUT_HIT = 0,   /* bool: the last (u, v) lies within the tolerance of
+                          the ray and inside the record's domain widened by
+                          SCG_DOMAIN_EPS (anywhere on the record, not only in
+                          the sub-patch domain plus overlap), in front of the
                           eye (and in front of T_LIMIT for ert2) */
     SCG_OUT_UV,        /* vec2: (u, v) in the surface's domain */
     SCG_OUT_T,         /* float: ray parameter of the hit (dir units) */
@@ -132,10 +149,13 @@ typedef enum scg_output_slot {
     SCG_OUTPUT_COUNT
 } scg_output_slot;
 
-/* Parameter overlap allowed around a sub-patch domain, as a fraction of its
- * width and height (Martin et al.: leaves overlap slightly so that no crack
- * opens between neighbouring sub-patches). (u, v) must in addition stay in
- * the record's own domain, widened by SCG_DOMAIN_EPS of its size. */
+/* Parameter overlap allowed around a sub-patch domain while iterating, as a
+ * fraction of its width and height (Martin et al.: leaves overlap slightly
+ * so that no crack opens between neighbouring sub-patches); the iteration
+ * box is in addition cut to the record's own domain, widened by
+ * SCG_DOMAIN_EPS of its size. A hit is accepted anywhere in that widened
+ * record domain: a converged point outside the sub-patch is still a true
+ * intersection, and the depth test keeps the nearest. */
 #define SCG_DOMAIN_OVERLAP 0.1f
 #define SCG_DOMAIN_EPS 1.0e-5f
 

@@ -18,13 +18,11 @@
 
 #include "nurbs.h"
 
-enum { MAX_TRIM_DEGREE = 11 };
-
 /* De Casteljau split of a homogeneous 2D curve (3 doubles per point) at t;
  * left or right may be NULL. */
 static void split_curve(const double *cp, int degree, double t, double *left, double *right)
 {
-    double work[3 * (MAX_TRIM_DEGREE + 1)];
+    double work[3 * (SC_TRIM_MAX_DEGREE + 1)];
     memcpy(work, cp, sizeof(double) * 3 * (size_t)(degree + 1));
     for (int c = 0; c < 3; c++) {
         if (left)
@@ -56,7 +54,7 @@ static double binomial(int n, int k)
 /* Value of a Bernstein polynomial (coefficients c[0..n]) at t. */
 static double bernstein_eval(const double *c, int n, double t)
 {
-    double work[2 * MAX_TRIM_DEGREE + 1];
+    double work[2 * SC_TRIM_MAX_DEGREE + 1];
     memcpy(work, c, sizeof(double) * (size_t)(n + 1));
     for (int r = 1; r <= n; r++)
         for (int i = 0; i <= n - r; i++)
@@ -108,8 +106,8 @@ static void bernstein_roots(const double *c, int n, double a, double b, int dept
         return;
     }
     /* Split the coefficients at 0.5 (de Casteljau, one value per row). */
-    double left[2 * MAX_TRIM_DEGREE + 1], right[2 * MAX_TRIM_DEGREE + 1],
-        work[2 * MAX_TRIM_DEGREE + 1];
+    double left[2 * SC_TRIM_MAX_DEGREE + 1], right[2 * SC_TRIM_MAX_DEGREE + 1],
+        work[2 * SC_TRIM_MAX_DEGREE + 1];
     memcpy(work, c, sizeof(double) * (size_t)(n + 1));
     left[0] = work[0];
     right[n] = work[n];
@@ -136,7 +134,7 @@ static int v_turning_points(const double *cp, int p, double *roots, int max_root
     if (p < 2)
         return 0; /* a rational line is monotone */
     int n = 2 * p - 1;
-    double num[2 * MAX_TRIM_DEGREE + 1] = {0};
+    double num[2 * SC_TRIM_MAX_DEGREE + 1] = {0};
     for (int i = 0; i < p; i++) {
         double dv = p * (cp[3 * (i + 1) + 1] - cp[3 * i + 1]);
         double dw = p * (cp[3 * (i + 1) + 2] - cp[3 * i + 2]);
@@ -145,9 +143,9 @@ static int v_turning_points(const double *cp, int p, double *roots, int max_root
             num[i + j] += weight * (dv * cp[3 * j + 2] - dw * cp[3 * j + 1]);
         }
     }
-    double found[4 * MAX_TRIM_DEGREE];
+    double found[4 * SC_TRIM_MAX_DEGREE];
     int nfound = 0;
-    bernstein_roots(num, n, 0.0, 1.0, 0, found, &nfound, 4 * MAX_TRIM_DEGREE);
+    bernstein_roots(num, n, 0.0, 1.0, 0, found, &nfound, 4 * SC_TRIM_MAX_DEGREE);
     qsort(found, (size_t)nfound, sizeof(double), compare_doubles);
     int count = 0;
     for (int k = 0; k < nfound && count < max_roots; k++) {
@@ -165,7 +163,7 @@ static int v_turning_points(const double *cp, int p, double *roots, int max_root
  * points (which may be moved to match the neighbours). */
 typedef struct raw_piece {
     int degree;
-    double cp[3 * (MAX_TRIM_DEGREE + 1)];
+    double cp[3 * (SC_TRIM_MAX_DEGREE + 1)];
     double start[2], end[2];
     int loop;
 } raw_piece;
@@ -189,9 +187,9 @@ static raw_piece *piece_append(piece_list *list)
 /* Appends the monotone pieces of one Bézier segment. */
 static void add_segment_pieces(piece_list *list, const double *cp, int p, int loop)
 {
-    double roots[4 * MAX_TRIM_DEGREE];
-    int nroots = v_turning_points(cp, p, roots, 4 * MAX_TRIM_DEGREE);
-    double rest[3 * (MAX_TRIM_DEGREE + 1)];
+    double roots[4 * SC_TRIM_MAX_DEGREE];
+    int nroots = v_turning_points(cp, p, roots, 4 * SC_TRIM_MAX_DEGREE);
+    double rest[3 * (SC_TRIM_MAX_DEGREE + 1)];
     memcpy(rest, cp, sizeof(double) * 3 * (size_t)(p + 1));
     double consumed = 0.0; /* rest covers [consumed, 1] of the segment */
     for (int k = 0; k <= nroots; k++) {
@@ -200,7 +198,7 @@ static void add_segment_pieces(piece_list *list, const double *cp, int p, int lo
         piece->loop = loop;
         if (k < nroots) {
             double local = (roots[k] - consumed) / (1.0 - consumed);
-            double right[3 * (MAX_TRIM_DEGREE + 1)];
+            double right[3 * (SC_TRIM_MAX_DEGREE + 1)];
             split_curve(rest, p, local, piece->cp, right);
             memcpy(rest, right, sizeof right);
             consumed = roots[k];
@@ -221,15 +219,19 @@ static int prepare_loop(const sc_surface *s, int loop_index, piece_list *list, d
     int first = list->count;
     for (int c = 0; c < loop->ncurves; c++) {
         const sc_curve *curve = &loop->curves[c];
-        if (curve->dim != 2 || curve->degree < 1 || curve->degree > MAX_TRIM_DEGREE)
+        if (curve->dim != 2 || curve->degree < 1 || curve->degree > SC_TRIM_MAX_DEGREE)
             return sc_fail(err, NULL, 0,
-                           "surface '%s' loop %d curve %d: degree %d (dimension %d) is not a "
-                           "2D trim curve of degree 1..%d",
-                           s->name, loop_index, c, curve->degree, curve->dim, MAX_TRIM_DEGREE);
+                           "surface '%s', trim loop %d (%s), curve %d: a %dD curve of degree %d; "
+                           "trimming takes 2D curves of degree 1..%d",
+                           s->name, loop_index, loop->is_hole ? "a hole" : "the outer loop", c,
+                           curve->dim, curve->degree, SC_TRIM_MAX_DEGREE);
         for (int i = 0; i < curve->ncp; i++)
             if (!(curve->cp[3 * i + 2] > 0.0))
-                return sc_fail(err, NULL, 0, "surface '%s' loop %d curve %d: weight %d is not positive",
-                               s->name, loop_index, c, i);
+                return sc_fail(err, NULL, 0,
+                               "surface '%s', trim loop %d (%s), curve %d: control point %d has "
+                               "weight %g; trim curves need positive weights",
+                               s->name, loop_index, loop->is_hole ? "a hole" : "the outer loop",
+                               c, i, curve->cp[3 * i + 2]);
         sc_curve *segments = NULL;
         int nseg = 0;
         sc_curve_to_bezier(curve, &segments, &nseg);
@@ -368,7 +370,7 @@ static int piece_crosses(const sc_trim_piece *piece, double u, double v)
     if (v == piece->v_lo)
         return piece->u_lo > u;
     int p = piece->degree;
-    double cp[3 * (MAX_TRIM_DEGREE + 1)], left[3 * (MAX_TRIM_DEGREE + 1)];
+    double cp[3 * (SC_TRIM_MAX_DEGREE + 1)], left[3 * (SC_TRIM_MAX_DEGREE + 1)];
     memcpy(cp, piece->cp, sizeof(double) * 3 * (size_t)(p + 1));
     for (int depth = 0; depth < 80; depth++) {
         double umin = INFINITY, umax = -INFINITY;

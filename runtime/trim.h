@@ -10,6 +10,12 @@
 
 #include "scene.h"
 
+/* Highest trim-curve degree that trimming handles, in the reference and on
+ * the GPU alike: the highest degree a variant key can name (SCG_MAX_DEGREE,
+ * gen/key.h). Loop validation drops loops with curves above it, so every
+ * loop a reader keeps can be drawn. */
+#define SC_TRIM_MAX_DEGREE 16
+
 /* One v-monotone piece of a trim curve: a rational Bézier curve in
  * homogeneous form (u·w, v·w, w), oriented so that v grows with its
  * parameter. It covers v in [v_lo, v_hi) (the end point with the larger v
@@ -18,7 +24,7 @@
  * v_lo == v_hi and so covers no v at all. */
 typedef struct sc_trim_piece {
     int degree;
-    double cp[3 * 12];        /* up to degree 11 (the IGES maximum) */
+    double cp[3 * (SC_TRIM_MAX_DEGREE + 1)];
     double u_lo, v_lo;        /* end point at the lower v */
     double u_hi, v_hi;        /* end point at the upper v; v_hi >= v_lo */
     double u_min, u_max;      /* bounds of u over the piece (control points) */
@@ -41,8 +47,10 @@ typedef struct sc_trim {
 } sc_trim;
 
 /* Prepares the loops of `s`. For an untrimmed surface *out is NULL (every
- * point is kept). Fails for a trim curve of degree above 11 or with
- * non-positive weights. */
+ * point is kept). Fails, naming the surface, loop and curve, for a curve
+ * that is not 2D, of degree above SC_TRIM_MAX_DEGREE or with non-positive
+ * weights: loop validation keeps these from the readers, so only scenes
+ * built in code meet it. */
 int sc_trim_prepare(const sc_surface *s, sc_trim **out, sc_error *err);
 void sc_trim_free(sc_trim *trim);
 

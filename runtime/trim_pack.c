@@ -11,6 +11,10 @@
  *    float steps and rounded outwards, so that a verdict from the bounds
  *    agrees with the clipping of the same float curve.
  *
+ * Pieces stay grouped by loop; each loop's range and the box of its pieces
+ * let the per-piece methods skip the loops a point lies outside of (see
+ * pack_loops for why that is exact).
+ *
  * The accelerated method reads a uniform grid over the normalised domain
  * (the outer rows and columns reach to infinity). A cell is a full-height
  * slice of its row, so the part of a piece inside the row that does not
@@ -39,6 +43,7 @@
 #define BOUND_MARGIN (1.0 / 2097152.0)
 
 enum { MAX_POINTS = SCG_MAX_DEGREE + 1 };
+_Static_assert(SC_TRIM_MAX_DEGREE <= SCG_MAX_DEGREE, "every prepared piece fits a key's degree");
 
 /* Grid size: square, about GRID_CELLS_PER_PIECE cells a piece, a power of
  * two up to MAX_GRID_SIDE a side. More cells, or more rows than columns,
@@ -59,7 +64,14 @@ int sc_surface_trim_degree(const sc_surface *s)
 typedef struct packed_piece {
     float cp[3 * MAX_POINTS];
     float v_lo, v_hi, u_lo, u_min, u_max;
+    int loop;            /* the scene loop it came from */
 } packed_piece;
+
+/* A loop's range of pieces and the box that holds them. */
+typedef struct packed_loop {
+    int first, count;    /* pieces first … first + count - 1 */
+    float u_min, u_max, v_lo, v_hi;
+} packed_loop;
 
 static float float_down(double x)
 {
@@ -177,6 +189,7 @@ static int pack_pieces(const sc_trim *trim, const double domain[4], int degree,
         if (!(pc->v_lo < pc->v_hi))
             continue;
         pc->u_lo = (float)((src->u_lo - u0) * su);
+        pc->loop = src->loop;
         double cp[3 * MAX_POINTS];
         elevate(src->cp, src->degree, degree, cp);
         double lo = fmin(pc->u_lo, (src->u_hi - u0) * su), hi = fmax(pc->u_lo, (src->u_hi - u0) * su);
@@ -194,6 +207,52 @@ static int pack_pieces(const sc_trim *trim, const double domain[4], int degree,
         npieces++;
     }
     return npieces;
+}
+
+/* Whether every v is covered by an even number of the pieces: the v ends
+ * of the pieces, each value an even number of times. A closed chain of
+ * pieces sharing end points bit for bit is even this way. */
+static int even_coverage(const packed_piece *pieces, int count, float *ends)
+{
+    for (int k = 0; k < count; k++) {
+        ends[2 * k] = pieces[k].v_lo;
+        ends[2 * k + 1] = pieces[k].v_hi;
+    }
+    qsort(ends, 2 * (size_t)count, sizeof *ends, compare_floats);
+    for (int k = 0; k < 2 * count; k += 2)
+        if (ends[k] != ends[k + 1])
+            return 0;
+    return 1;
+}
+
+/* The loops' ranges and boxes. The preparation emits each loop's pieces
+ * together, so a loop is a run of pieces. A point outside a loop's box
+ * gets no crossing from it, or (left of the box) one for every piece
+ * covering its v, which is an even number for a closed loop: either way
+ * the loop leaves the parity alone and the per-piece methods skip it. A
+ * loop whose ends do not pair up (left open, or broken by rounding) has
+ * its box opened to the left, so that it is never skipped there. */
+static int pack_loops(const packed_piece *pieces, int npieces, packed_loop *loops)
+{
+    float *ends = sc_alloc(2 * (size_t)npieces + 1, sizeof *ends);
+    int nloops = 0;
+    for (int k = 0; k < npieces;) {
+        packed_loop *lp = &loops[nloops++];
+        lp->first = k;
+        lp->u_min = lp->v_lo = FLT_MAX;
+        lp->u_max = lp->v_hi = -FLT_MAX;
+        for (; k < npieces && pieces[k].loop == pieces[lp->first].loop; k++) {
+            lp->u_min = fminf(lp->u_min, pieces[k].u_min);
+            lp->u_max = fmaxf(lp->u_max, pieces[k].u_max);
+            lp->v_lo = fminf(lp->v_lo, pieces[k].v_lo);
+            lp->v_hi = fmaxf(lp->v_hi, pieces[k].v_hi);
+        }
+        lp->count = k - lp->first;
+        if (!even_coverage(&pieces[lp->first], lp->count, ends))
+            lp->u_min = -FLT_MAX;
+    }
+    free(ends);
+    return nloops;
 }
 
 /* ---- the grid ---- */
@@ -330,20 +389,33 @@ static void free_grid(grid *gr)
     free(gr->entries);
 }
 
-static long long block_texels(int npieces, int degree, const grid *gr)
+/* Texel offsets of the parts of a block (gpu_layout.h): header, cells,
+ * loops, pieces, entries. */
+typedef struct block_layout {
+    long long cells, loops, pieces, entries, total;
+} block_layout;
+
+static block_layout layout_of(int nloops, int npieces, int degree, const grid *gr)
 {
-    return SCG_TRIM_HEADER_TEXELS + (long long)npieces * SCG_TRIM_PIECE_TEXELS(degree) +
-           (long long)gr->cols * gr->rows + (long long)SCG_TRIM_ENTRY_TEXELS * gr->nentries;
+    block_layout at;
+    at.cells = SCG_TRIM_HEADER_TEXELS;
+    at.loops = at.cells + (long long)gr->cols * gr->rows;
+    at.pieces = at.loops + (long long)SCG_TRIM_LOOP_TEXELS * nloops;
+    at.entries = at.pieces + (long long)npieces * SCG_TRIM_PIECE_TEXELS(degree);
+    at.total = at.entries + (long long)SCG_TRIM_ENTRY_TEXELS * gr->nentries;
+    return at;
 }
 
 /* The grid of the preferred size, or, when its block would reach the
  * texels a float offset can address, of half the rows and columns. */
-static void fitting_grid(const packed_piece *pieces, int npieces, int degree, int bias, grid *gr)
+static void fitting_grid(const packed_piece *pieces, int npieces, int nloops, int degree, int bias,
+                         grid *gr)
 {
     int cols = grid_side(npieces), rows = cols;
     for (;;) {
         build_grid(pieces, npieces, degree, bias, cols, rows, gr);
-        if (block_texels(npieces, degree, gr) < SCG_TRIM_MAX_TEXELS || (cols == 1 && rows == 1))
+        if (layout_of(nloops, npieces, degree, gr).total < SCG_TRIM_MAX_TEXELS ||
+            (cols == 1 && rows == 1))
             return;
         free_grid(gr);
         cols = cols > 1 ? cols / 2 : 1;
@@ -351,28 +423,28 @@ static void fitting_grid(const packed_piece *pieces, int npieces, int degree, in
     }
 }
 
-/* The texels: header, pieces, cells, entries (gpu_layout.h). */
-static int write_block(const packed_piece *pieces, int npieces, const grid *gr,
-                       const double domain[4], sc_trim_block *out, sc_error *err)
+/* The texels (gpu_layout.h). */
+static int write_block(const packed_piece *pieces, int npieces, const packed_loop *loops,
+                       int nloops, const grid *gr, const double domain[4], sc_trim_block *out,
+                       sc_error *err)
 {
     int degree = out->degree;
     double u0 = domain[0], v0 = domain[2];
     double su = 1.0 / (domain[1] - u0), sv = 1.0 / (domain[3] - v0);
     int piece_texels = SCG_TRIM_PIECE_TEXELS(degree);
-    long long cell_offset = SCG_TRIM_HEADER_TEXELS + (long long)npieces * piece_texels;
-    long long entry_offset = cell_offset + (long long)gr->cols * gr->rows;
-    long long ntexels = block_texels(npieces, degree, gr);
-    if (ntexels >= SCG_TRIM_MAX_TEXELS)
+    block_layout at = layout_of(nloops, npieces, degree, gr);
+    if (at.total >= SCG_TRIM_MAX_TEXELS)
         return sc_fail(err, NULL, 0, "trim block of %lld texels: offsets from %d on are not exact "
-                       "in float", ntexels, SCG_TRIM_MAX_TEXELS);
+                       "in float", at.total, SCG_TRIM_MAX_TEXELS);
     out->npieces = npieces;
+    out->nloops = nloops;
     out->grid_u = gr->cols;
     out->grid_v = gr->rows;
     out->nentries = gr->nentries;
-    out->ntexels = (int)ntexels;
+    out->ntexels = (int)at.total;
     out->texels = sc_alloc(4 * (size_t)out->ntexels, sizeof(float));
     float *h = texel(out, 0);
-    h[0] = (float)npieces;
+    h[0] = (float)nloops;
     h[1] = (float)out->bias;
     h[2] = (float)gr->cols;
     h[3] = (float)gr->rows;
@@ -381,34 +453,43 @@ static int write_block(const packed_piece *pieces, int npieces, const grid *gr,
     h[1] = (float)sv;
     h[2] = (float)(-u0 * su);
     h[3] = (float)(-v0 * sv);
+    for (int cell = 0; cell < gr->cols * gr->rows; cell++) {
+        float *t = texel(out, (int)at.cells + cell);
+        t[0] = (float)gr->parity[cell];
+        t[1] = gr->count[cell] ? (float)(at.entries + SCG_TRIM_ENTRY_TEXELS * gr->first[cell])
+                               : 0.0f;
+        t[2] = (float)gr->count[cell];
+    }
+    for (int l = 0; l < nloops; l++) {
+        float *t = texel(out, (int)at.loops + SCG_TRIM_LOOP_TEXELS * l);
+        t[0] = loops[l].u_min;
+        t[1] = loops[l].u_max;
+        t[2] = loops[l].v_lo;
+        t[3] = loops[l].v_hi;
+        t[4] = (float)(at.pieces + (long long)loops[l].first * piece_texels);
+        t[5] = (float)loops[l].count;
+    }
     for (int k = 0; k < npieces; k++) {
         const packed_piece *pc = &pieces[k];
-        int at = SCG_TRIM_HEADER_TEXELS + k * piece_texels;
-        float *t = texel(out, at);
+        int first = (int)at.pieces + k * piece_texels;
+        float *t = texel(out, first);
         t[0] = pc->v_lo;
         t[1] = pc->v_hi;
         t[2] = pc->u_min;
         t[3] = pc->u_max;
         for (int i = 0; i <= degree; i++)
-            memcpy(texel(out, at + 1 + i), &pc->cp[3 * i], 3 * sizeof(float));
-        texel(out, at + 1)[3] = pc->u_lo;
-    }
-    for (int cell = 0; cell < gr->cols * gr->rows; cell++) {
-        float *t = texel(out, (int)cell_offset + cell);
-        t[0] = (float)gr->parity[cell];
-        t[1] = gr->count[cell] ? (float)(entry_offset + SCG_TRIM_ENTRY_TEXELS * gr->first[cell])
-                               : 0.0f;
-        t[2] = (float)gr->count[cell];
+            memcpy(texel(out, first + 1 + i), &pc->cp[3 * i], 3 * sizeof(float));
+        texel(out, first + 1)[3] = pc->u_lo;
     }
     for (int k = 0; k < gr->nentries; k++) {
         const grid_entry *e = &gr->entries[k];
-        float *t = texel(out, (int)entry_offset + SCG_TRIM_ENTRY_TEXELS * k);
+        float *t = texel(out, (int)at.entries + SCG_TRIM_ENTRY_TEXELS * k);
         t[0] = e->v_lo;
         t[1] = e->v_hi;
         t[2] = e->u_min;
         t[3] = e->u_max;
         if (e->piece >= 0)
-            t[4] = (float)(SCG_TRIM_HEADER_TEXELS + e->piece * piece_texels);
+            t[4] = (float)(at.pieces + (long long)e->piece * piece_texels);
     }
     return SC_OK;
 }
@@ -420,11 +501,12 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
     if (s->nloops == 0)
         return SC_OK;
     int needed = sc_surface_trim_degree(s);
-    if (degree < needed || degree > SCG_MAX_DEGREE)
+    /* A curve above the limit is the preparation's to report, naming it. */
+    if (needed <= SC_TRIM_MAX_DEGREE && (degree < needed || degree > SCG_MAX_DEGREE))
         return sc_fail(err, NULL, 0,
-                       "surface '%s': trim degree %d cannot hold its trim curves of degree %d "
-                       "(1..%d)",
-                       s->name, degree, needed, SCG_MAX_DEGREE);
+                       "surface '%s': a program of trim degree %d cannot draw its trim curves "
+                       "of degree up to %d (the surface's key names trim degree %d)",
+                       s->name, degree, needed, needed);
     sc_trim *trim;
     if (sc_trim_prepare(s, &trim, err) != SC_OK)
         return SC_FAIL;
@@ -432,11 +514,14 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
     sc_surface_domain(s, &domain[0], &domain[1], &domain[2], &domain[3]);
     packed_piece *pieces = sc_alloc((size_t)trim->npieces + 1, sizeof *pieces);
     int npieces = pack_pieces(trim, domain, degree, pieces);
+    packed_loop *loops = sc_alloc((size_t)npieces + 1, sizeof *loops);
+    int nloops = pack_loops(pieces, npieces, loops);
     out->bias = trim->kept_without_crossings;
     grid gr;
-    fitting_grid(pieces, npieces, degree, out->bias, &gr);
-    int status = write_block(pieces, npieces, &gr, domain, out, err);
+    fitting_grid(pieces, npieces, nloops, degree, out->bias, &gr);
+    int status = write_block(pieces, npieces, loops, nloops, &gr, domain, out, err);
     free_grid(&gr);
+    free(loops);
     free(pieces);
     sc_trim_free(trim);
     return status;

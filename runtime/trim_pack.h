@@ -3,8 +3,11 @@
  * The loops are cut exactly into v-monotone rational Bézier pieces with
  * half-open v ranges by the reference's preparation (trim.h), degree-
  * elevated to the key's trim degree, normalised to the domain [0,1]² and
- * rounded to float; a uniform grid of cells, each with its parity and the
- * few pieces that may pass through it, serves the accelerated method. */
+ * rounded to float, grouped by loop, each loop with its range of pieces
+ * and their bounding box (which lets the per-piece methods skip the loops
+ * a point lies outside of); a uniform grid of cells, each with its parity
+ * and the few pieces that may pass through it, serves the accelerated
+ * method. */
 #ifndef SC_TRIM_PACK_H
 #define SC_TRIM_PACK_H
 
@@ -13,6 +16,7 @@
 typedef struct sc_trim_block {
     int degree;          /* piece degree: the key's trim degree */
     int npieces;         /* pieces (horizontal ones, in float, are left out) */
+    int nloops;          /* loops with pieces: each a range of pieces and a box */
     int grid_u, grid_v;  /* grid columns and rows (powers of two) */
     int nentries;        /* entries of the cells' lists */
     int bias;            /* parity bias: 1 when the surface has only holes */
@@ -27,7 +31,7 @@ int sc_surface_trim_degree(const sc_surface *s);
 /* Packs the trim loops of s for programs of trim degree `degree`, which
  * must be at least sc_surface_trim_degree(s). An untrimmed surface gives an
  * empty block (ntexels 0). Fails for trim curves the preparation refuses
- * (degree above 11, non-positive weights), for a degree too low, and for
+ * (trim.h), for a degree too low, and for
  * pieces too many to address in float even with a 1 × 1 grid (2^24
  * texels). */
 int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *err);

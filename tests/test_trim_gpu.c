@@ -24,6 +24,9 @@
 /* 64 float ulps of 1.0 (2^-23 each): the largest ulp in [0, 1]. */
 #define NEAR_CURVE (64.0 * FLT_EPSILON)
 
+/* Doubles of a homogeneous 2D Bézier curve of the highest trim degree. */
+#define CURVE_DOUBLES (3 * (SC_TRIM_MAX_DEGREE + 1))
+
 /* ---- shapes ---- */
 
 /* A flat bicubic patch over the domain [u0, u1] × [v0, v1]: x = u, y = v. */
@@ -256,7 +259,7 @@ static bool near_piece(const double *cp, int n, double u, double v, double dist,
         return false;
     if (depth > 50 || (hi[0] - lo[0] < dist / 4 && hi[1] - lo[1] < dist / 4))
         return true;
-    double left[3 * 12], right[3 * 12], work[3 * 12];
+    double left[CURVE_DOUBLES], right[CURVE_DOUBLES], work[CURVE_DOUBLES];
     memcpy(work, cp, sizeof(double) * 3 * (size_t)(n + 1));
     for (int c = 0; c < 3; c++) {
         left[c] = work[c];
@@ -279,7 +282,7 @@ static bool near_piece(const double *cp, int n, double u, double v, double dist,
 typedef struct curves {
     int count;
     int *degree;
-    double (*cp)[36];
+    double (*cp)[CURVE_DOUBLES];
 } curves;
 
 static void curves_of(const sc_surface *s, curves *out)
@@ -311,7 +314,7 @@ static void curves_of(const sc_surface *s, curves *out)
 
 static void bezier_point(const double *cp, int n, double t, double *pt)
 {
-    double work[36];
+    double work[CURVE_DOUBLES];
     memcpy(work, cp, sizeof(double) * 3 * (size_t)(n + 1));
     for (int r = 1; r <= n; r++)
         for (int i = 0; i <= n - r; i++)
@@ -340,6 +343,18 @@ typedef struct probe {
 } probe;
 
 static const int BLOCK_AT = SCG_RECORD_TEXELS;
+
+/* Texel offsets in a block (gpu_layout.h): header, cells, loops, pieces. */
+static int loops_at(const sc_trim_block *block)
+{
+    return SCG_TRIM_HEADER_TEXELS + block->grid_u * block->grid_v;
+}
+
+static int piece_at(const sc_trim_block *block, int k)
+{
+    return loops_at(block) + SCG_TRIM_LOOP_TEXELS * block->nloops +
+           k * SCG_TRIM_PIECE_TEXELS(block->degree);
+}
 
 static void fill_records(const sc_trim_block *block, float **texels, int *ntexels)
 {
@@ -458,8 +473,7 @@ static bool check_surface(const char *trim_field, const sc_surface *s, int npoin
     }
     int level = 0;
     for (int k = 0; k < p.block.npieces && ok && level < npoints; k++) {
-        const float *t = p.block.texels + 4 * (SCG_TRIM_HEADER_TEXELS +
-                                               k * SCG_TRIM_PIECE_TEXELS(p.block.degree));
+        const float *t = p.block.texels + 4 * piece_at(&p.block, k);
         /* A random u, and a point just left of the lower end, whose ray
          * runs exactly through it. */
         for (int end = 0; end < 2 && ok; end++, level++)
@@ -575,10 +589,12 @@ TEST(trimgpu_pack_layout)
      * widened by a few float steps, reach into the cells on both sides, so
      * rows 1 and 2 list each piece in 2 cells. */
     CHECK_INT(block.nentries, 2 * 2 * 2);
-    int cells = 2 + 2 * piece;
-    CHECK_INT(block.ntexels, cells + 16 + SCG_TRIM_ENTRY_TEXELS * block.nentries);
+    CHECK_INT(block.nloops, 1);
+    /* Header, 16 cells, one loop, its two pieces, the entries. */
+    int cells = 2, loop = cells + 16, pieces = loop + 2;
+    CHECK_INT(block.ntexels, pieces + 2 * piece + SCG_TRIM_ENTRY_TEXELS * block.nentries);
     const float *t = block.texels;
-    CHECK_NEAR(t[0], 2, 0);
+    CHECK_NEAR(t[0], 1, 0);
     CHECK_NEAR(t[1], 0, 0);
     CHECK_NEAR(t[2], 4, 0);
     CHECK_NEAR(t[3], 4, 0);
@@ -590,15 +606,15 @@ TEST(trimgpu_pack_layout)
      * other at 0.25; a line elevated to degree 2 has its middle point at
      * the middle. */
     double seen_u = 0;
-    int piece_at[2] = {0, 0};    /* texel offset of the piece at u = 0.25, 0.75 */
+    int piece_u[2] = {0, 0};     /* texel offset of the piece at u = 0.25, 0.75 */
     for (int k = 0; k < 2; k++) {
-        const float *h = t + 4 * (2 + k * piece);
+        const float *h = t + 4 * (pieces + k * piece);
         CHECK_NEAR(h[0], 0.25, 0);
         CHECK_NEAR(h[1], 0.75, 0);
         CHECK(h[2] < h[3]);
         double u = h[4 + 3];                 /* u_lo in the first point's w */
         CHECK(u == 0.25 || u == 0.75);
-        piece_at[u == 0.75] = 2 + k * piece;
+        piece_u[u == 0.75] = pieces + k * piece;
         CHECK_NEAR(h[2], u, 1e-6);
         CHECK_NEAR(h[3], u, 1e-6);
         for (int i = 0; i < 3; i++) {
@@ -609,6 +625,16 @@ TEST(trimgpu_pack_layout)
         seen_u += u;
     }
     CHECK_NEAR(seen_u, 1.0, 0);
+    /* The loop: the box of its pieces (u bounds widened by a few float
+     * steps, v exact), then its range. */
+    const float *box = t + 4 * loop;
+    CHECK(box[0] < 0.25f && box[1] > 0.75f);
+    CHECK_NEAR(box[0], 0.25, 1e-6);
+    CHECK_NEAR(box[1], 0.75, 1e-6);
+    CHECK_NEAR(box[2], 0.25, 0);
+    CHECK_NEAR(box[3], 0.75, 0);
+    CHECK_NEAR(box[4], pieces, 0);
+    CHECK_NEAR(box[5], 2, 0);
     /* Cells, known by construction. Rows 0 and 3 (v < 0.25, v >= 0.75)
      * meet no piece: parity 0, no entry. In rows 1 and 2 both pieces span
      * the row. Their bounds, widened by a few float steps, reach into the
@@ -626,7 +652,7 @@ TEST(trimgpu_pack_layout)
                 continue;
             const float *entry = t + 4 * (int)cell[1];
             double u = col < 2 ? 0.25 : 0.75;
-            CHECK_INT((int)entry[4], piece_at[col >= 2]);
+            CHECK_INT((int)entry[4], piece_u[col >= 2]);
             CHECK_NEAR(entry[0], 0.25, 0);
             CHECK_NEAR(entry[1], 0.75, 0);
             CHECK(entry[2] < u && u < entry[3]);
@@ -643,7 +669,7 @@ TEST(trimgpu_pack_layout)
     CHECK_INT(block.bias, 1);
     CHECK_NEAR(block.texels[1], 1, 0);
     /* The bottom-left cell lies outside both holes: kept by parity alone. */
-    const float *corner = block.texels + 4 * (2 + block.npieces * SCG_TRIM_PIECE_TEXELS(2));
+    const float *corner = block.texels + 4 * 2;
     CHECK_NEAR(corner[0], 1, 0);
     CHECK_NEAR(corner[2], 0, 0);
     sc_trim_block_free(&block);
@@ -670,7 +696,7 @@ TEST(trimgpu_pack_runs)
     CHECK_INT(block.grid_u, 4);
     CHECK_INT(block.grid_v, 4);
     const float *t = block.texels;
-    int cells = 2 + 4 * SCG_TRIM_PIECE_TEXELS(1);
+    int cells = 2;
     /* Column 1, row 1 (u, v in [0.25, 0.5)): the outer edge u = 1 spans
      * the row (parity 1); both triangle sides, right of the cell, start at
      * v = 0.4: their flips cancel. Decided by the parity alone. */
@@ -703,7 +729,6 @@ TEST(trimgpu_pack_runs)
     CHECK_INT(block.npieces, 3);
     CHECK_INT(block.grid_u, 4);
     t = block.texels;
-    cells = 2 + 3 * SCG_TRIM_PIECE_TEXELS(1);
     cell = t + 4 * (cells + 4 * 1 + 1);
     CHECK_NEAR(cell[0], 1, 0);
     CHECK_NEAR(cell[2], 2, 0);
@@ -724,6 +749,113 @@ TEST(trimgpu_pack_runs)
     CHECK_INT(listed, 1);
     CHECK_INT(runs, 1);
     sc_trim_block_free(&block);
+    sc_scene_free(&scene);
+}
+
+/* The loop table: each loop's pieces together, its range and its box,
+ * known by construction; a loop left open is never skipped from the left;
+ * the per-piece methods skip the loops whose box misses the point. */
+TEST(trimgpu_pack_loops)
+{
+    /* Nested: the outer square (its two vertical edges), then circles of
+     * 4 quarter arcs each (each arc monotone in v), in scene order. */
+    sc_scene scene;
+    sc_surface *s = make_shape(&scene, SHAPE_NESTED, 0, 1, 0, 1);
+    sc_trim_block block;
+    sc_error err;
+    CHECK_INT(sc_trim_pack(s, 2, &block, &err), SC_OK);
+    CHECK_INT(block.nloops, 4);
+    CHECK_NEAR(block.texels[0], 4, 0);
+    CHECK_INT(block.npieces, 2 + 3 * 4);
+    static const double centre[4][2] = {{0.5, 0.5}, {0.5, 0.5}, {0.5, 0.5}, {0.45, 0.5}};
+    static const double radius[4] = {0.45, 0.4, 0.25, 0.1};
+    static const int count[4] = {2, 4, 4, 4};
+    int next = piece_at(&block, 0);
+    for (int l = 0; l < 4; l++) {
+        const float *box = block.texels + 4 * (loops_at(&block) + SCG_TRIM_LOOP_TEXELS * l);
+        double lo_u = centre[l][0] - radius[l], hi_u = centre[l][0] + radius[l];
+        double lo_v = centre[l][1] - radius[l], hi_v = centre[l][1] + radius[l];
+        CHECK(box[0] <= lo_u && box[1] >= hi_u);
+        CHECK_NEAR(box[0], lo_u, 1e-6);
+        CHECK_NEAR(box[1], hi_u, 1e-6);
+        CHECK_NEAR(box[2], lo_v, 1e-7);
+        CHECK_NEAR(box[3], hi_v, 1e-7);
+        CHECK_INT((int)box[4], next);
+        CHECK_INT((int)box[5], count[l]);
+        /* Every piece of a circle's range has both ends on that circle. */
+        for (int k = 0; l > 0 && k < count[l]; k++) {
+            const float *piece = block.texels + 4 * (next + k * SCG_TRIM_PIECE_TEXELS(2));
+            for (int end = 0; end <= 2; end += 2) {
+                const float *q = piece + 4 * (1 + end);
+                double du = q[0] / q[2] - centre[l][0], dv = q[1] / q[2] - centre[l][1];
+                CHECK_NEAR(sqrt(du * du + dv * dv), radius[l], 1e-6);
+            }
+        }
+        next += count[l] * SCG_TRIM_PIECE_TEXELS(2);
+    }
+    sc_trim_block_free(&block);
+    sc_scene_free(&scene);
+
+    /* A curve left open (scene built in code, not validated): from (0.2,
+     * 0.2) up to (0.5, 0.8), down to (0.8, 0.5). Its ends do not pair up
+     * in v, so its box reaches to -FLT_MAX: the point (0.1, 0.35), left
+     * of the curve, gets the crossing of its first edge, as in the
+     * reference, with the outer loop's right edge: 2, not kept. */
+    sc_scene_init(&scene);
+    s = add_patch(&scene, 0, 1, 0, 1);
+    add_polygon(s, 0, outer_square, 4);
+    sc_curve *open = &add_loop(s, 1, 1)->curves[0];
+    static const double bends[3][2] = {{0.2, 0.2}, {0.5, 0.8}, {0.8, 0.5}};
+    static const double open_knots[5] = {0, 0, 1, 2, 2};
+    sc_curve_alloc(open, 2, 1, 3);
+    memcpy(open->knots, open_knots, sizeof open_knots);
+    for (int i = 0; i < 3; i++) {
+        open->cp[3 * i] = bends[i][0];
+        open->cp[3 * i + 1] = bends[i][1];
+        open->cp[3 * i + 2] = 1.0;
+    }
+    CHECK_INT(sc_trim_pack(s, 1, &block, &err), SC_OK);
+    CHECK_INT(block.nloops, 2);
+    const float *outer_box = block.texels + 4 * loops_at(&block);
+    CHECK_NEAR(outer_box[0], 0.05, 1e-6);
+    CHECK(outer_box[SCG_TRIM_LOOP_TEXELS * 4] == -FLT_MAX);
+    CHECK_NEAR(outer_box[SCG_TRIM_LOOP_TEXELS * 4 + 1], 0.8, 1e-6);
+    sc_trim_block_free(&block);
+    sc_trim *trim;
+    CHECK_INT(sc_trim_prepare(s, &trim, &err), SC_OK);
+    CHECK_INT(sc_trim_crossings(trim, 0.1, 0.35), 2);
+    static const char *const methods[] = {"clip1i16", "left1i16", "fast1i16"};
+    for (int m = 0; m < 3; m++) {
+        probe p;
+        CHECK_INT(probe_open(&p, methods[m], s, &err), SC_OK);
+        CHECK_INT(probe_run(&p, 0.1f, 0.35f, NULL, NULL), 0);
+        CHECK_INT(probe_run(&p, 0.3f, 0.35f, NULL, NULL), sc_trim_inside(trim, 0.3f, 0.35f));
+        probe_close(&p);
+    }
+    sc_trim_free(trim);
+    sc_scene_free(&scene);
+
+    /* Skipping: 98 pieces of a wavy hole (radius 0.3 ± 0.11 about the
+     * centre) and the outer square. Visiting a piece takes more than 4
+     * instructions (its address, a fetch, two comparisons, a branch), so
+     * a point inside the hole's box, which visits all 98, runs more than
+     * 98 · 4; a point left of the box or above it skips the loop whole
+     * and runs fewer. */
+    s = make_shape(&scene, SHAPE_POLY100, 0, 1, 0, 1);
+    CHECK_INT(sc_trim_prepare(s, &trim, &err), SC_OK);
+    static const float points[3][2] = {{0.5f, 0.5f}, {0.07f, 0.5f}, {0.5f, 0.93f}};
+    for (int m = 0; m < 2; m++) {
+        probe p;
+        CHECK_INT(probe_open(&p, methods[m], s, &err), SC_OK);
+        for (int k = 0; k < 3; k++) {
+            long long steps = 0;
+            CHECK_INT(probe_run(&p, points[k][0], points[k][1], &steps, NULL),
+                      sc_trim_inside(trim, points[k][0], points[k][1]));
+            CHECK(k == 0 ? steps > 98 * 4 : steps < 98 * 4);
+        }
+        probe_close(&p);
+    }
+    sc_trim_free(trim);
     sc_scene_free(&scene);
 }
 
@@ -828,6 +960,67 @@ TEST(trimgpu_probe_crossing_loops)
         CHECK(a.tested > 500);
         CHECK_INT(a.wrong, 0);
     }
+    sc_scene_free(&scene);
+}
+
+/* A closed Bézier curve of degree n through points on a circle about
+ * (0.5, 0.5) (first point = last), as a hole. */
+static void add_bezier_hole(sc_surface *s, int n)
+{
+    sc_curve *c = &add_loop(s, 1, 1)->curves[0];
+    sc_curve_alloc(c, 2, n, n + 1);
+    for (int i = 0; i < 2 * (n + 1); i++)
+        c->knots[i] = i <= n ? 0.0 : 1.0;
+    for (int i = 0; i <= n; i++) {
+        double a = 2 * M_PI * (i % n) / n, r = 0.3 + 0.1 * (i % 2);
+        to_domain(s, 0.5 + r * cos(a), 0.5 + r * sin(a), &c->cp[3 * i], &c->cp[3 * i + 1]);
+        c->cp[3 * i + 2] = 1.0;
+    }
+}
+
+/* Trim curves up to the degree a key can name (SC_TRIM_MAX_DEGREE) are
+ * drawn, every method agreeing with the reference; one degree more is
+ * refused with a message that names the surface, the loop and the curve,
+ * by the reference and by the packing alike. */
+TEST(trimgpu_high_degree)
+{
+    for (int n = 12; n <= SC_TRIM_MAX_DEGREE; n += SC_TRIM_MAX_DEGREE - 12) {
+        sc_scene scene;
+        sc_scene_init(&scene);
+        sc_surface *s = add_patch(&scene, 0, 1, 0, 1);
+        add_polygon(s, 0, outer_square, 4);
+        add_bezier_hole(s, n);
+        sc_scene_validate_loops(&scene);
+        CHECK_INT(scene.dropped_loops, 0);
+        CHECK_INT(sc_surface_trim_degree(s), n);
+        for (int m = 0; m < 3; m++) {
+            char field[32];
+            agreement a;
+            snprintf(field, sizeof field, all_methods[m], n);
+            CHECK(check_surface(field, s, 300, &a));
+            CHECK(a.tested > 300);
+            CHECK_INT(a.wrong, 0);
+        }
+        sc_scene_free(&scene);
+    }
+    sc_scene scene;
+    sc_scene_init(&scene);
+    sc_surface *s = add_patch(&scene, 0, 1, 0, 1);
+    snprintf(s->name, sizeof s->name, "lid");
+    add_polygon(s, 0, outer_square, 4);
+    add_bezier_hole(s, SC_TRIM_MAX_DEGREE + 1);
+    sc_trim *trim;
+    sc_trim_block block;
+    sc_error err;
+    char expected[160];
+    snprintf(expected, sizeof expected,
+             "surface 'lid', trim loop 1 (a hole), curve 0: a 2D curve of degree %d; trimming "
+             "takes 2D curves of degree 1..%d", SC_TRIM_MAX_DEGREE + 1, SC_TRIM_MAX_DEGREE);
+    CHECK_INT(sc_trim_prepare(s, &trim, &err), SC_FAIL);
+    CHECK_STR(err.message, expected);
+    CHECK_INT(sc_trim_pack(s, SC_TRIM_MAX_DEGREE, &block, &err), SC_FAIL);
+    CHECK_STR(err.message, expected);
+    CHECK_INT(block.ntexels, 0);
     sc_scene_free(&scene);
 }
 

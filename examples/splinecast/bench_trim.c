@@ -376,9 +376,9 @@ static int bench_shape(const sc_gl *gl, const options *o, const sc_scene *untrim
                               &block, err);
     int pieces = block.npieces;
     if (status == SC_OK)
-        fprintf(stderr, "bench: %s trim block: %d pieces, %d x %d cells, %d entries, %d bytes\n",
-                shapes[shape].name, block.npieces, block.grid_u, block.grid_v, block.nentries,
-                16 * block.ntexels);
+        fprintf(stderr, "bench: %s trim block: %d loops, %d pieces, %d x %d cells, %d entries, "
+                "%d bytes\n", shapes[shape].name, block.nloops, block.npieces, block.grid_u,
+                block.grid_v, block.nentries, 16 * block.ntexels);
     sc_trim_block_free(&block);
     sc_renderer *r[1 + MAX_METHODS] = {0};
     int n = 1 + o->nmethods;
