@@ -102,9 +102,9 @@ $(BUILD)/tests/main.o: $(BUILD)/tests_list.h
 $(TESTS): $(TEST_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $(TEST_OBJ) $(LIB) $(LIBS)
 
-demo: deps
-	@$(MAKE) --no-print-directory all
-	@sh examples/demo.sh $(CLI)
+# demo.sh runs deps and the build itself, so that it can time them.
+demo:
+	@sh examples/demo.sh $(CLI) $(BUILD)/demo $(MAKE) --no-print-directory BUILD=$(BUILD)
 
 test: deps
 	@$(MAKE) --no-print-directory all

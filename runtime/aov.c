@@ -4,6 +4,7 @@
  * file compares equal to the camera it was rendered with. */
 #include "aov.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -159,7 +160,7 @@ int sc_aov_read(const char *path, sc_aov *aov, sc_error *err)
     memset(aov, 0, sizeof *aov);
     FILE *f = fopen(path, "rb");
     if (!f)
-        return sc_fail(err, path, 0, "cannot open");
+        return sc_fail(err, path, 0, "cannot open: %s", strerror(errno));
     char header[AOV_MAX_HEADER];
     if (!fgets(header, sizeof header, f) || !strchr(header, '\n')) {
         fclose(f);

@@ -86,10 +86,15 @@ int sc_accuracy_compare(const sc_aov *ref, const sc_aov *test, sc_accuracy *acc,
         acc->normal_mean_deg = normal_sum / (double)acc->both_hit;
     }
     free(pos_err);
+    /* Percentages of the reference's hits (BRIEF). False hits against a
+     * reference that hits nothing are infinitely many of its none: the line
+     * says `inf` rather than hiding them behind a 0. */
     if (acc->ref_hits) {
-        acc->coverage_pct = 100.0 * (double)(acc->holes + acc->false_hits) / (double)acc->ref_hits;
-        acc->fail_pct =
-            100.0 * (double)(acc->holes + acc->false_hits + acc->off) / (double)acc->ref_hits;
+        double base = (double)acc->ref_hits;
+        acc->coverage_pct = 100.0 * (double)(acc->holes + acc->false_hits) / base;
+        acc->fail_pct = 100.0 * (double)(acc->holes + acc->false_hits + acc->off) / base;
+    } else if (acc->false_hits) {
+        acc->coverage_pct = acc->fail_pct = INFINITY;
     }
     if (acc->has_iters && acc->test_hits)
         acc->iters_mean = iters_sum / (double)acc->test_hits;

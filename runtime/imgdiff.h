@@ -1,9 +1,10 @@
 /* imgdiff.h — accuracy of one AOV image against another (the reference),
- * exactly as BRIEF "Accuracy — how it is measured" defines it: holes,
- * false hits and off pixels (both hit, points more than one pixel
- * footprint apart at the reference's distance), position and normal
- * errors, and iterations when the test image has them. The GPU path prints
- * the same `accuracy` line through sc_accuracy_format. */
+ * as BRIEF "Accuracy — how it is measured" defines it: holes, false hits
+ * and off pixels (both hit, points more than one pixel footprint apart at
+ * the reference's distance), position and normal errors, and iterations
+ * when the test image has them. Percentages are of the reference's hits;
+ * false hits against a reference that hits nothing make them infinite. The
+ * GPU path prints the same `accuracy` line through sc_accuracy_format. */
 #ifndef SC_IMGDIFF_H
 #define SC_IMGDIFF_H
 
@@ -17,7 +18,9 @@ typedef struct sc_accuracy {
     long false_hits;          /* reference misses, test hits */
     long off;                 /* both hit, more than one footprint apart */
     double coverage_pct;      /* (holes + false hits) / ref_hits × 100 */
-    double fail_pct;          /* (holes + false hits + off) / ref_hits × 100 */
+    double fail_pct;          /* (holes + false hits + off) / ref_hits × 100;
+                                 both 0 when neither image hits, infinite
+                                 when only the test does */
     double pos_median_px;     /* position error in footprints, over both_hit */
     double pos_max_px;
     double normal_mean_deg;   /* angle between normals, over both_hit */

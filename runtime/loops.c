@@ -11,6 +11,7 @@
  * that validating a validated loop (a scene written and read back) changes
  * nothing. */
 #include "nurbs.h"
+#include "trim.h"
 
 #include <assert.h>
 #include <float.h>
@@ -417,8 +418,12 @@ typedef struct loop_site {
     int loop;
 } loop_site;
 
-#define LOOP_FMT "surface %d (%s): trim loop %d"
-#define LOOP_ARGS(site) (site)->surface, (site)->scene->surfaces[(site)->surface].name, (site)->loop
+/* "FILE: " when the scene came from a file (readers set scene->source
+ * before validating). */
+#define LOOP_FMT "%s%ssurface %d (%s): trim loop %d"
+#define LOOP_ARGS(site)                                                                      \
+    (site)->scene->source, (site)->scene->source[0] ? ": " : "", (site)->surface,           \
+        (site)->scene->surfaces[(site)->surface].name, (site)->loop
 
 /* Closes the gaps of a loop or decides to drop it. Returns 1 to keep, and
  * then fills `lay`. */
@@ -488,6 +493,11 @@ static int check_curves(const loop_site *site, const sc_loop *loop)
         if (err.message[0]) {
             sc_log(SC_LOG_WARN, LOOP_FMT " dropped: curve %d is invalid: %s", LOOP_ARGS(site),
                    k, err.message);
+            return 0;
+        }
+        if (c->degree > SC_TRIM_MAX_DEGREE) {
+            sc_log(SC_LOG_WARN, LOOP_FMT " dropped: curve %d has degree %d; trimming handles "
+                   "degrees up to %d", LOOP_ARGS(site), k, c->degree, SC_TRIM_MAX_DEGREE);
             return 0;
         }
     }

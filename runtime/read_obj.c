@@ -11,7 +11,8 @@
  * Every surface and curve is brought to the scene model's clamped form on
  * read: its domain ends inserted to multiplicity deg and the control points
  * outside dropped (sc_curve_clamp / sc_surface_clamp), then a surf range
- * smaller than the domain cut out by splitting. */
+ * smaller than the domain cut out by splitting (one wider is cut to the
+ * domain, with a warning). */
 #include "io.h"
 
 #include <math.h>
@@ -580,7 +581,9 @@ static int finish_surf(obj_reader *r)
                     (long long)n[0] * n[1]);
     }
     /* The range the surface is evaluated over: surf's s0 s1 t0 t1 within
-     * the knot vectors' own range. */
+     * the knot vectors' own range. A wider range asks for a surface the
+     * knots do not define, so cutting it is worth a warning; by 1e-9 of the
+     * knots' range (as for trim ranges) it is only a writer's rounding. */
     double lim[4];
     for (int dir = 0; dir < 2; dir++) {
         int p = el->deg[dir];
@@ -593,6 +596,11 @@ static int finish_surf(obj_reader *r)
                         "range [%.17g, %.17g]", "uv"[dir], el->range[2 * dir],
                         el->range[2 * dir + 1], k0, k1);
         }
+        double tol = 1e-9 * (k1 - k0);
+        if (el->range[2 * dir] < k0 - tol || el->range[2 * dir + 1] > k1 + tol)
+            sc_log(SC_LOG_WARN, "%s:%d: surf %c range [%.17g, %.17g] is wider than the knots' "
+                   "range [%.17g, %.17g]; cut to [%.17g, %.17g]", r->name, el->line, "uv"[dir],
+                   el->range[2 * dir], el->range[2 * dir + 1], k0, k1, a, b);
         lim[2 * dir] = a;
         lim[2 * dir + 1] = b;
     }

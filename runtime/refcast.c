@@ -178,15 +178,19 @@ int sc_refcast_prepare(const sc_scene *scene, sc_refcast **out, sc_error *err)
     rc->trims = sc_alloc((size_t)scene->nsurfaces + 1, sizeof(sc_trim *));
     int cap = 0;
     double scene_lo[3] = {INFINITY, INFINITY, INFINITY}, scene_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    /* Messages name the scene's file when it came from one. */
+    const char *file = scene->source[0] ? scene->source : NULL;
     for (int s = 0; s < scene->nsurfaces; s++) {
         const sc_surface *surf = &scene->surfaces[s];
         if (surf->deg_u > MAX_PATCH_DEGREE || surf->deg_v > MAX_PATCH_DEGREE) {
             sc_refcast_free(rc);
-            return sc_fail(err, NULL, 0, "surface %d ('%s'): degree %dx%d is above the reference's limit %d",
+            return sc_fail(err, file, 0, "surface %d ('%s'): degree %dx%d is above the reference's limit %d",
                            s, surf->name, surf->deg_u, surf->deg_v, MAX_PATCH_DEGREE);
         }
         if (sc_trim_prepare(surf, &rc->trims[s], err) != SC_OK) {
             sc_refcast_free(rc);
+            if (err && file && !err->file[0])
+                snprintf(err->file, sizeof err->file, "%s", file);
             return SC_FAIL;
         }
         sc_bezier_patch *bez = NULL;

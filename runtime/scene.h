@@ -107,10 +107,12 @@ void sc_surface_bake_xform(sc_surface *s);
  * For each loop of each surface: a gap between consecutive curves (and
  * between the last and the first) up to 1e-9 of the domain size is closed
  * silently by moving the end points together; up to 1e-3 it is closed with a
- * straight segment and a warning naming surface and loop; a larger gap, or a
- * self-crossing loop, drops the loop with a warning (the surface is kept) and
- * is counted in scene->dropped_loops. Curves outside the domain are not an
- * error (real files have them slightly outside). */
+ * straight segment and a warning naming surface and loop; a larger gap, a
+ * self-crossing loop or a curve above SC_TRIM_MAX_DEGREE (trim.h) drops the
+ * loop with a warning (the surface is kept) and is counted in
+ * scene->dropped_loops. Warnings start with scene->source when it is set.
+ * Curves outside the domain are not an error (real files have them slightly
+ * outside). */
 void sc_scene_validate_loops(sc_scene *scene);
 
 #endif

@@ -8,7 +8,22 @@
 #include <string.h>
 
 #include "scene_keys.h"
+#include "trim.h"
 #include "trim_pack.h"
+
+int sc_surface_drawable(const sc_scene *scene, int i, sc_error *err)
+{
+    const sc_surface *s = &scene->surfaces[i];
+    const char *file = scene->source[0] ? scene->source : NULL;
+    if (s->deg_u > SCG_MAX_DEGREE || s->deg_v > SCG_MAX_DEGREE)
+        return sc_fail(err, file, 0, "surface %d (%s): degree %d×%d is above %d, the highest "
+                       "the GPU programs draw", i, s->name, s->deg_u, s->deg_v, SCG_MAX_DEGREE);
+    int tdeg = sc_surface_trim_degree(s);
+    if (tdeg > SC_TRIM_MAX_DEGREE)
+        return sc_fail(err, file, 0, "surface %d (%s): a trim curve of degree %d is above %d, "
+                       "the highest the trimming draws", i, s->name, tdeg, SC_TRIM_MAX_DEGREE);
+    return SC_OK;
+}
 
 void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key)
 {
@@ -28,7 +43,7 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
     int tdeg = opts->ignore_trims ? 0 : sc_surface_trim_degree(s);
     if (s->nloops > 0 && tdeg > 0) {
         key->trim = opts->trim_method == SCG_TRIM_NONE ? SCG_TRIM_FAST : opts->trim_method;
-        key->trim_degree = tdeg > SCG_MAX_DEGREE ? SCG_MAX_DEGREE : tdeg;
+        key->trim_degree = tdeg;
         key->trim_iters = opts->trim_iters > 0 ? opts->trim_iters : SCG_DEFAULT_TRIM_ITERS;
     }
     if (opts->max_iters > 0)
@@ -51,22 +66,27 @@ int sc_scene_keys(const sc_scene *scene, const sc_key_options *opts,
     if (scene->nsurfaces == 0)
         return SC_OK;
     char (*all)[SCG_KEY_MAX] = sc_alloc((size_t)scene->nsurfaces, SCG_KEY_MAX);
+    int drawable = 0;
     for (int i = 0; i < scene->nsurfaces; i++) {
-        const sc_surface *s = &scene->surfaces[i];
-        if (s->deg_u < 1 || s->deg_v < 1 || s->deg_u > SCG_MAX_DEGREE ||
-            s->deg_v > SCG_MAX_DEGREE) {
-            free(all);
-            return sc_fail(err, scene->source, 0,
-                           "surface %d (%s): degree %d×%d outside 1…%d", i, s->name, s->deg_u,
-                           s->deg_v, SCG_MAX_DEGREE);
+        sc_error why = {0};
+        if (sc_surface_drawable(scene, i, &why) != SC_OK) {
+            if (!opts || !opts->skip_undrawable) {
+                free(all);
+                if (err)
+                    *err = why;
+                return SC_FAIL;
+            }
+            char text[1024];
+            sc_log(SC_LOG_WARN, "%s: no variant key", sc_error_text(&why, text, sizeof text));
+            continue;
         }
         scg_key key;
-        sc_surface_key(s, opts, &key);
-        scg_key_format(&key, all[i], SCG_KEY_MAX);
+        sc_surface_key(&scene->surfaces[i], opts, &key);
+        scg_key_format(&key, all[drawable++], SCG_KEY_MAX);
     }
-    qsort(all, (size_t)scene->nsurfaces, SCG_KEY_MAX, compare_keys);
+    qsort(all, (size_t)drawable, SCG_KEY_MAX, compare_keys);
     int n = 0;
-    for (int i = 0; i < scene->nsurfaces; i++)
+    for (int i = 0; i < drawable; i++)
         if (n == 0 || strcmp(all[n - 1], all[i]) != 0)
             memmove(all[n++], all[i], SCG_KEY_MAX);
     *keys = all;

@@ -48,13 +48,28 @@ typedef struct sc_key_options {
     bool ert_set;             /* false: SC_KEY_DEFAULT_ERT */
     scg_ert ert;
     unsigned outputs;         /* 0: SC_KEY_DEFAULT_OUTPUTS */
+    /* 0 (default): a surface the GPU programs cannot draw makes
+     * sc_scene_keys fail; 1: it gets no key and a warning through sc_log,
+     * so that a scene can be described whatever it holds (`info`). */
+    int skip_undrawable;
 } sc_key_options;
 
-/* The key surface s needs under opts (NULL: defaults). */
+/* SC_OK when the GPU programs can draw surface i of the scene. Otherwise
+ * SC_FAIL, with err naming the scene's file, the surface and why: a degree
+ * above SCG_MAX_DEGREE in either direction (the unrolled programs and the
+ * generic program's basis arrays stop there; the scene model and the
+ * reference go further), or a trim curve above SC_TRIM_MAX_DEGREE (trim.h;
+ * loop validation keeps those out of scenes read from files). */
+int sc_surface_drawable(const sc_scene *scene, int i, sc_error *err);
+
+/* The key surface s needs under opts (NULL: defaults); a valid key only
+ * for a surface sc_surface_drawable accepts. */
 void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key);
 
-/* The distinct keys of a scene, in canonical text, sorted: *keys is a new
- * array of *count entries (free with free()); an empty scene gives 0. */
+/* The distinct keys of a scene's drawable surfaces, in canonical text,
+ * sorted: *keys is a new array of *count entries (free with free()); an
+ * empty scene gives 0. A surface that is not drawable fails, or is left
+ * out with a warning under opts->skip_undrawable. */
 int sc_scene_keys(const sc_scene *scene, const sc_key_options *opts,
                   char (**keys)[SCG_KEY_MAX], int *count, sc_error *err);
 

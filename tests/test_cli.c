@@ -1,5 +1,6 @@
 /* test_cli.c — the command line as a whole: the top-level help, unknown
- * commands, and the variant keys `info` lists for a scene. */
+ * commands, the variant keys `info` lists for a scene, and `render` on a
+ * scene the GPU programs cannot draw. */
 #include <stdlib.h>
 #include <sys/stat.h>
 
@@ -68,5 +69,35 @@ TEST(cli_outputs_have_plain_permissions)
         struct stat st;
         CHECK_INT(stat(path, &st), 0);
         CHECK_INT(st.st_mode & 0777, 0644);
+    }
+}
+
+/* A 17×1 Bézier surface: the scene model and `ref` take it, the GPU
+ * programs stop at degree 16, so `render` refuses the scene naming the
+ * file and the surface, and writes nothing. */
+TEST(cli_render_refuses_undrawable_surface)
+{
+    char text[2048] = "";
+    size_t n = 0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i <= 17; i++)
+            n += (size_t)snprintf(text + n, sizeof text - n, "v %d %d %d\n", i, j, i % 2);
+    n += (size_t)snprintf(text + n, sizeof text - n, "cstype bezier\no wavy\ndeg 17 1\nsurf 0 1 0 1");
+    for (int k = 1; k <= 36; k++)
+        n += (size_t)snprintf(text + n, sizeof text - n, " %d", k);
+    snprintf(text + n, sizeof text - n, "\nparm u 0 1\nparm v 0 1\nend\n");
+    const char *scene = test_write_tmp("wavy17.obj", text);
+    char cmd[2048], *err = NULL;
+    snprintf(cmd, sizeof cmd, "%s render %s -o %s/wavy17.png --size 16x16", test_cli, scene,
+             test_tmpdir());
+    CHECK_INT(test_run(cmd, NULL, &err), 1);
+    CHECK_CONTAINS(err, "wavy17.obj: surface 0 (wavy): degree 17×1 is above 16");
+    free(err);
+    const char *names[] = {"wavy17.png", "wavy17.aov"};
+    for (int i = 0; i < 2; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", test_tmpdir(), names[i]);
+        struct stat st;
+        CHECK(stat(path, &st) != 0);
     }
 }

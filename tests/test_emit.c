@@ -6,6 +6,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "test.h"
 
+#include <unistd.h>
+
 #include <stdlib.h>
 #include <sys/stat.h>
 
@@ -142,7 +144,9 @@ TEST(emit_hand_built_program)
     CHECK_CONTAINS(s, "    vec3 clamped_21 = min(point_8, 0.1);\n");
     CHECK_CONTAINS(s, "    vec2 uv_24 = vec2(clamped_21.x, point_8.y);\n");
     CHECK_CONTAINS(s, "    normal = vec3(0.0, 0.0, 1.0);\n");
-    CHECK_CONTAINS(s, "    int iterations_31 = steps_13;\n    iters = iterations_31;\n");
+    /* A load with no store after it is read as its variable. */
+    CHECK_CONTAINS(s, "    iters = steps_13;\n");
+    CHECK(!strstr(s, "iterations_31"));
     CHECK_CONTAINS(s, "    int iterations_34 = int(record_12.w);\n    surface = iterations_34;\n}\n");
     scg_text_free(&fn);
 
@@ -160,6 +164,58 @@ TEST(emit_hand_built_program)
     CHECK(!strstr(scg_text_str(&frag), "sc_uv0"));
     CHECK(!strstr(scg_text_str(&frag), "sc_footprint"));
     scg_text_free(&frag);
+    scg_program_free(p);
+}
+
+/* Vectors gathered from one value's components print as a swizzle; a
+ * load is read as its variable unless the variable is stored before its
+ * last use. */
+TEST(emit_swizzles_and_loads_in_place)
+{
+    scg_key key;
+    scg_key_default(&key, SCG_PATCH_BEZIER, 1, 1);
+    scg_program *p = scg_program_create(&key);
+    scg_builder b;
+    scg_builder_init(&b, p);
+    scg_value domain = scg_input(&b, SCG_IN_DOMAIN);                  /* 1 */
+    scg_value u0 = scg_comp(&b, domain, 0);                           /* 2 */
+    scg_value v0 = scg_comp(&b, domain, 2);                           /* 3 */
+    scg_name(&b, "lo");
+    scg_value lo = scg_vec2(&b, u0, v0);                              /* 4 */
+    scg_name(&b, NULL);
+    scg_value origin = scg_input(&b, SCG_IN_RAY_ORIGIN);              /* 5 */
+    scg_name(&b, "count");
+    scg_value count = scg_var(&b, SCG_INT, 0, 0);                     /* 6 */
+    scg_name(&b, "before");
+    scg_value before = scg_load(&b, count);                           /* 7 */
+    scg_value one = scg_const_i(&b, 1);                               /* 8 */
+    scg_value next = scg_add(&b, before, one);                        /* 9 */
+    scg_store(&b, count, next);                                       /* 10 */
+    scg_name(&b, "again");
+    scg_value again = scg_load(&b, count);                            /* 11 */
+    scg_store(&b, count, one);                                        /* 12 */
+    scg_output(&b, SCG_OUT_ITERS, again);                             /* 13 */
+    scg_output(&b, SCG_OUT_UV, lo);                                   /* 14 */
+    scg_value ox = scg_comp(&b, origin, 0);                           /* 15 */
+    scg_value oy = scg_comp(&b, origin, 1);                           /* 16 */
+    scg_value oz = scg_comp(&b, origin, 2);                           /* 17 */
+    scg_name(&b, "shuffled");
+    scg_value shuffled = scg_vec3(&b, oz, oy, ox);                    /* 18 */
+    scg_output(&b, SCG_OUT_POINT, shuffled);                          /* 19 */
+    sc_error err = {0};
+    CHECK_INT(scg_validate(p, &err), SC_OK);
+    scg_text fn = {0};
+    CHECK_INT(scg_emit_intersect_function(p, &fn, &err), SC_OK);
+    const char *s = scg_text_str(&fn);
+    CHECK_CONTAINS(s, "    vec2 lo_4 = sc_domain.xz;\n");
+    CHECK_CONTAINS(s, "    int count_6 = 0;\n"
+                      "    int before_9 = count_6 + 1;\n"
+                      "    count_6 = before_9;\n"
+                      "    int again_11 = count_6;\n"
+                      "    count_6 = 1;\n"
+                      "    iters = again_11;\n");
+    CHECK_CONTAINS(s, "    vec3 shuffled_18 = sc_ray_origin.zyx;\n");
+    scg_text_free(&fn);
     scg_program_free(p);
 }
 
@@ -358,6 +414,31 @@ TEST(emit_gen_command)
     free(errors);
     snprintf(cmd, sizeof cmd, "%s gen --key %s", test_cli, bicubic);
     CHECK_INT(test_run(cmd, NULL, NULL), 2);
+}
+
+/* A surface no GPU program can draw (degree 17 in u: the scene model takes
+ * it, the programs stop at 16) is refused by `gen --scene`, as by
+ * `render`, naming it; nothing is written. */
+TEST(emit_gen_scene_refuses_undrawable_surface)
+{
+    char obj[4096] = "cstype bezier\ndeg 17 1\n";
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 18; i++)
+            snprintf(obj + strlen(obj), sizeof obj - strlen(obj), "v %d %d 0\n", i, j);
+    snprintf(obj + strlen(obj), sizeof obj - strlen(obj), "surf 0 1 0 1");
+    for (int k = 1; k <= 36; k++)
+        snprintf(obj + strlen(obj), sizeof obj - strlen(obj), " %d", k);
+    snprintf(obj + strlen(obj), sizeof obj - strlen(obj), "\nparm u 0 1\nparm v 0 1\nend\n");
+    const char *path = test_write_tmp("deg17.obj", obj);
+    char cmd[1024], *err_text = NULL;
+    snprintf(cmd, sizeof cmd, "%s gen --scene %s -o %s/gen/deg17", test_cli, path, test_tmpdir());
+    CHECK_INT(test_run(cmd, NULL, &err_text), 1);
+    CHECK_CONTAINS(err_text, "deg17.obj");
+    CHECK_CONTAINS(err_text, "degree 17");
+    free(err_text);
+    char manifest[1024];
+    snprintf(manifest, sizeof manifest, "%s/gen/deg17/manifest.tsv", test_tmpdir());
+    CHECK(access(manifest, F_OK) != 0);
 }
 
 TEST(emit_gen_scene_keys)

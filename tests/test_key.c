@@ -108,6 +108,9 @@ TEST(key_malformed_refused)
         {"bez3x3-poly-dc-trim0-newton-mid-it0-tol0.25-ert0-out.shade", "from 1 to 64"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0-ert0-out.shade", "tolerance"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.0005-ert0-out.shade", "at most 3 decimals"},
+        /* Just above the range, in the whole part and in the fraction. */
+        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1001-ert0-out.shade", "0.001 to 1000"},
+        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1000.001-ert0-out.shade", "0.001 to 1000"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert4-out.shade", "ert0, ert1, ert2 or ert3"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.", "outputs"},
         {"bez3x3-poly-loop-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},
@@ -139,6 +142,12 @@ TEST(key_reserved_refused)
         CHECK_INT(scg_key_check(&k, &err), SC_FAIL);
         CHECK_CONTAINS(err.message, "not implemented yet");
         CHECK_CONTAINS(err.message, cases[i].says);
+        /* The error record names the key; the text names it once. */
+        CHECK_STR(err.key, cases[i].text);
+        char text[1024];
+        const char *shown = sc_error_text(&err, text, sizeof text);
+        const char *first = strstr(shown, cases[i].text);
+        CHECK(first != NULL && strstr(first + 1, cases[i].text) == NULL);
     }
 }
 
@@ -175,6 +184,79 @@ TEST(key_scene_keys)
     CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-newton-cp-it8-tol0.05-ert1-out.shade.aov");
     CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-newton-cp-it8-tol0.05-ert1-out.shade.aov");
     free(keys);
+    sc_scene_free(&scene);
+}
+
+typedef struct warnings {
+    int count;
+    char text[2048];
+} warnings;
+
+static void gather(sc_log_level level, const char *message, void *user)
+{
+    warnings *w = user;
+    if (level < SC_LOG_WARN)
+        return;
+    w->count++;
+    size_t used = strlen(w->text);
+    snprintf(w->text + used, sizeof w->text - used, "%s\n", message);
+}
+
+/* Surfaces the GPU programs cannot draw: degree 17 in one direction (the
+ * scene model takes any degree), and a trim curve of degree 17 in a scene
+ * built in code (readers drop such loops). By default the scene's keys
+ * fail naming the first; skipping them leaves the drawable surface's key
+ * and one warning each. The trim degree is never clamped into a key. */
+TEST(key_scene_keys_undrawable_surfaces)
+{
+    sc_scene scene;
+    sc_scene_init(&scene);
+    snprintf(scene.source, sizeof scene.source, "parts.obj");
+    static const int shapes[][4] = {{2, 2, 3, 3}, {17, 1, 18, 2}, {3, 3, 4, 4}};
+    for (int i = 0; i < 3; i++) {
+        sc_surface *s = sc_scene_add_surface(&scene);
+        sc_surface_alloc(s, shapes[i][0], shapes[i][1], shapes[i][2], shapes[i][3]);
+        snprintf(s->name, sizeof s->name, "part%d", i);
+    }
+    sc_surface *trimmed = &scene.surfaces[2];
+    trimmed->nloops = 1;
+    trimmed->loops = sc_alloc(1, sizeof(sc_loop));
+    trimmed->loops[0].ncurves = 1;
+    trimmed->loops[0].curves = sc_alloc(1, sizeof(sc_curve));
+    sc_curve_alloc(&trimmed->loops[0].curves[0], 2, 17, 18);
+    sc_error err = {0};
+    CHECK_INT(sc_surface_drawable(&scene, 0, &err), SC_OK);
+    CHECK_INT(sc_surface_drawable(&scene, 2, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "surface 2 (part2): a trim curve of degree 17 is above 16");
+    scg_key key;
+    sc_surface_key(trimmed, NULL, &key);
+    CHECK_INT(key.trim_degree, 17);
+    CHECK_INT(scg_key_check(&key, &err), SC_FAIL);
+
+    char (*keys)[SCG_KEY_MAX] = NULL;
+    int count = -1;
+    memset(&err, 0, sizeof err);
+    CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_FAIL);
+    CHECK(keys == NULL);
+    CHECK_INT(count, 0);
+    CHECK_STR(err.file, "parts.obj");
+    CHECK_CONTAINS(err.message, "surface 1 (part1): degree 17×1 is above 16");
+
+    sc_key_options opts;
+    memset(&opts, 0, sizeof opts);
+    opts.skip_undrawable = 1;
+    warnings w;
+    memset(&w, 0, sizeof w);
+    sc_set_logger(gather, &w);
+    int status = sc_scene_keys(&scene, &opts, &keys, &count, &err);
+    sc_set_logger(NULL, NULL);
+    CHECK_INT(status, SC_OK);
+    CHECK_INT(count, 1);
+    CHECK_STR(keys[0], "bez2x2-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    free(keys);
+    CHECK_INT(w.count, 2);
+    CHECK_CONTAINS(w.text, "parts.obj: surface 1 (part1): degree 17×1 is above 16");
+    CHECK_CONTAINS(w.text, "parts.obj: surface 2 (part2): a trim curve of degree 17");
     sc_scene_free(&scene);
 }
 

@@ -13,6 +13,7 @@
 
 #include "io.h"
 #include "nurbs.h"
+#include "trim.h"
 
 typedef struct log_capture {
     int count;
@@ -408,6 +409,46 @@ TEST(loops_invalid_curve_dropped)
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_CONTAINS(cap.text, "curve 2 is invalid");
+    sc_scene_free(&scene);
+}
+
+/* A closed Bézier curve of the given degree whose control points are the
+ * vertices of a regular polygon (the first repeated at the end) around
+ * (1, 0.5): a convex control polygon gives a convex, simple loop. */
+static void closed_bezier(sc_curve *c, int degree, double radius)
+{
+    sc_curve_alloc(c, 2, degree, degree + 1);
+    for (int i = 0; i <= degree; i++) {
+        c->knots[i] = 0;
+        c->knots[degree + 1 + i] = 1;
+        double a = 2 * M_PI * (i % degree) / degree;
+        c->cp[3 * i] = 1 + radius * cos(a);
+        c->cp[3 * i + 1] = 0.5 + radius * sin(a);
+        c->cp[3 * i + 2] = 1;
+    }
+}
+
+TEST(loops_curve_above_trim_degree_dropped)
+{
+    /* Loop 1 (a hole of one curve one degree above what trimming handles)
+     * is dropped, counted and named with the file; loop 2 (a hole at the
+     * highest degree) and the outer square stay. */
+    sc_scene scene;
+    sc_surface *s = make_scene(&scene);
+    snprintf(scene.source, sizeof scene.source, "plate.obj");
+    polygon_loop(s, 0, square, 4, -1, 0);
+    closed_bezier(&add_loop(s, 1, 1)->curves[0], SC_TRIM_MAX_DEGREE + 1, 0.2);
+    closed_bezier(&add_loop(s, 1, 1)->curves[0], SC_TRIM_MAX_DEGREE, 0.1);
+    log_capture cap;
+    validate(&scene, &cap);
+    s = &scene.surfaces[1];
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_INT(cap.count, 1);
+    CHECK_CONTAINS(cap.text, "plate.obj: surface 1 (plate): trim loop 1 dropped: curve 0 has "
+                             "degree 17; trimming handles degrees up to 16");
+    CHECK_INT(s->nloops, 2);
+    CHECK_INT(s->loops[0].ncurves, 4);
+    CHECK_INT(s->loops[1].curves[0].degree, SC_TRIM_MAX_DEGREE);
     sc_scene_free(&scene);
 }
 

@@ -215,6 +215,99 @@ TEST(readers_obj_surf_range_restricts)
     sc_scene_free(&scene);
 }
 
+/* Warnings of the readers and of loop validation, gathered through the
+ * logger. */
+typedef struct warnings {
+    int count;
+    char text[4096];
+} warnings;
+
+static void gather(sc_log_level level, const char *message, void *user)
+{
+    warnings *w = user;
+    if (level < SC_LOG_WARN)
+        return;
+    w->count++;
+    size_t used = strlen(w->text);
+    snprintf(w->text + used, sizeof w->text - used, "%s\n", message);
+}
+
+static int read_text_warnings(const char *text, sc_scene *scene, sc_error *err, warnings *w)
+{
+    memset(w, 0, sizeof *w);
+    sc_set_logger(gather, w);
+    int status = read_text(text, scene, err);
+    sc_set_logger(NULL, NULL);
+    return status;
+}
+
+TEST(readers_obj_surf_range_wider_is_cut_with_warning)
+{
+    /* surf asks for u over [-1, 3] and v over [0, 1 + 1e-12]; the knots
+     * define [0, 2] × [0, 1]. u is cut with a warning at the surf line (6);
+     * the v excess is a writer's rounding, cut silently. */
+    const char *text = "v 0 0 0\nv 4 0 0\nv 0 1 0\nv 4 1 0\n"
+                       "cstype bezier\ndeg 1 1\nsurf -1 3 0 1.000000000001 1 2 3 4\n"
+                       "parm u 0 2\nparm v 0 1\nend\n";
+    sc_scene scene;
+    sc_error err;
+    warnings w;
+    CHECK_INT(read_text_warnings(text, &scene, &err, &w), SC_OK);
+    CHECK_INT(w.count, 1);
+    CHECK_CONTAINS(w.text, "inline.obj:7: surf u range [-1, 3] is wider than the knots' range "
+                           "[0, 2]; cut to [0, 2]");
+    double u0, u1, v0, v1;
+    sc_surface_domain(&scene.surfaces[0], &u0, &u1, &v0, &v1);
+    CHECK_NEAR(u0, 0, 0);
+    CHECK_NEAR(u1, 2, 0);
+    CHECK_NEAR(v1, 1, 0);
+    sc_scene_free(&scene);
+}
+
+/* Appends to text an OBJ Bézier curv2 of the given degree whose control
+ * points are a regular polygon around (0.5, 0.5), closed; vp numbers start
+ * after `used` earlier vp lines. */
+static void append_closed_curv2(char *text, size_t size, int degree, double radius, int used)
+{
+    size_t n = strlen(text);
+    for (int i = 0; i < degree; i++) {
+        double a = 2 * M_PI * i / degree;
+        n += (size_t)snprintf(text + n, size - n, "vp %.17g %.17g\n", 0.5 + radius * cos(a),
+                              0.5 + radius * sin(a));
+    }
+    n += (size_t)snprintf(text + n, size - n, "cstype bezier\ndeg %d\ncurv2", degree);
+    for (int i = 0; i < degree; i++)
+        n += (size_t)snprintf(text + n, size - n, " %d", used + 1 + i);
+    snprintf(text + n, size - n, " %d\nparm u 0 1\nend\n", used + 1);
+}
+
+TEST(readers_obj_trim_degree_above_limit_dropped)
+{
+    /* The outer loop is one curve of degree 17, above what trimming
+     * handles: loop validation drops it, with a warning naming the file,
+     * surface and loop, and counts it. The hole, of degree 12, stays. */
+    char text[8192] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    append_closed_curv2(text, sizeof text, 17, 0.4, 0);
+    append_closed_curv2(text, sizeof text, 12, 0.2, 17);
+    size_t n = strlen(text);
+    snprintf(text + n, sizeof text - n,
+             "o lid\ncstype bezier\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 1\nparm v 0 1\n"
+             "trim 0 1 1\nhole 0 1 2\nend\n");
+    sc_scene scene;
+    sc_error err;
+    warnings w;
+    CHECK_INT(read_text_warnings(text, &scene, &err, &w), SC_OK);
+    CHECK_INT(scene.dropped_loops, 1);
+    CHECK_INT(w.count, 1);
+    CHECK_CONTAINS(w.text, "inline.obj: surface 0 (lid): trim loop 0 dropped: curve 0 has "
+                           "degree 17");
+    const sc_surface *s = &scene.surfaces[0];
+    CHECK_INT(s->nloops, 1);
+    CHECK_INT(s->loops[0].is_hole, 1);
+    CHECK_INT(s->loops[0].curves[0].degree, 12);
+    sc_scene_free(&scene);
+}
+
 TEST(readers_obj_multisegment_bezier_knots)
 {
     /* deg 3, parm u 0 1 2: two segments sharing an end point, 7 points. */
@@ -654,6 +747,36 @@ TEST(readers_cli_info_obj)
     /* all weights 1: polygonal despite `rat` */
     CHECK_CONTAINS(o, "surface 0 deg 1 1 rational 0 ctrl 2 2 loops 0 segments 0\n"
                       "skipped polygon 2 not-free-form\nbbox 0 0 0 1 1 0\n");
+    free(o);
+    free(e);
+}
+
+/* A scene the GPU programs cannot draw all of: info still describes it,
+ * lists the key of the surface they can draw and warns about the other. */
+TEST(readers_cli_info_undrawable_surface)
+{
+    char text[4096] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    size_t n = strlen(text);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i <= 17; i++)
+            n += (size_t)snprintf(text + n, sizeof text - n, "v %d %d %d\n", i, j, i % 2);
+    n += (size_t)snprintf(text + n, sizeof text - n,
+                          "cstype bezier\no flat\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 1\n"
+                          "parm v 0 1\nend\no wavy\ndeg 17 1\nsurf 0 1 0 1");
+    for (int k = 5; k <= 40; k++)
+        n += (size_t)snprintf(text + n, sizeof text - n, " %d", k);
+    snprintf(text + n, sizeof text - n, "\nparm u 0 1\nparm v 0 1\nend\n");
+    const char *scene = test_write_tmp("deg17.obj", text);
+    char cmd[1024], *o, *e;
+    snprintf(cmd, sizeof cmd, "%s info %s", test_cli, scene);
+    CHECK_INT(test_run(cmd, &o, &e), 0);
+    CHECK_CONTAINS(o, "surfaces 2\n");
+    CHECK_CONTAINS(o, "surface 1 deg 17 1 rational 0 ctrl 18 2 loops 0 segments 0\n");
+    CHECK_CONTAINS(o, "\nbbox 0 0 0 17 1 1\nkey bez1x1-poly-");
+    const char *key = strstr(o, "key ");
+    CHECK(key && !strstr(key + 1, "key "));
+    CHECK_CONTAINS(e, "deg17.obj: surface 1 (wavy): degree 17×1 is above 16");
+    CHECK(!strstr(e, "surface 0"));
     free(o);
     free(e);
 }

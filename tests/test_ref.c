@@ -5,6 +5,7 @@
  * value comes from analytic geometry, not from the code under test. */
 #include "test.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <sys/stat.h>
@@ -667,6 +668,50 @@ TEST(ref_cache_reuses_render)
     sc_aov_free(&b);
 }
 
+/* What the reference refuses (a patch degree above its limit, a trim curve
+ * above SC_TRIM_MAX_DEGREE in a scene built in code) is reported with the
+ * scene's file. */
+TEST(ref_prepare_errors_name_the_file)
+{
+    sc_scene scene;
+    sc_scene_init(&scene);
+    snprintf(scene.source, sizeof scene.source, "parts.obj");
+    sc_surface *s = sc_scene_add_surface(&scene);
+    sc_surface_alloc(s, 64, 1, 65, 2);
+    snprintf(s->name, sizeof s->name, "ribbon");
+    sc_refcast *rc = NULL;
+    sc_error err = {0};
+    CHECK_INT(sc_refcast_prepare(&scene, &rc, &err), SC_FAIL);
+    CHECK_STR(err.file, "parts.obj");
+    CHECK_CONTAINS(err.message, "surface 0 ('ribbon'): degree 64x1");
+    sc_scene_free(&scene);
+
+    sc_scene_init(&scene);
+    snprintf(scene.source, sizeof scene.source, "parts.obj");
+    add_planar_bicubic(&scene, 0);
+    s = &scene.surfaces[0];
+    s->nloops = 1;
+    s->loops = sc_alloc(1, sizeof(sc_loop));
+    s->loops[0].ncurves = 1;
+    s->loops[0].curves = sc_alloc(1, sizeof(sc_curve));
+    sc_curve *c = &s->loops[0].curves[0];
+    int p = SC_TRIM_MAX_DEGREE + 1;
+    sc_curve_alloc(c, 2, p, p + 1);
+    for (int i = 0; i <= p; i++) {
+        c->knots[i] = 0;
+        c->knots[p + 1 + i] = 1;
+        double a = 2 * M_PI * (i % p) / p;
+        c->cp[3 * i] = 0.5 + 0.3 * cos(a);
+        c->cp[3 * i + 1] = 0.5 + 0.3 * sin(a);
+        c->cp[3 * i + 2] = 1;
+    }
+    memset(&err, 0, sizeof err);
+    CHECK_INT(sc_refcast_prepare(&scene, &rc, &err), SC_FAIL);
+    CHECK_STR(err.file, "parts.obj");
+    CHECK_CONTAINS(err.message, "degree 17");
+    sc_scene_free(&scene);
+}
+
 /* ------------------------------------------------------- accuracy -- */
 
 TEST(ref_diff_metrics_known)
@@ -701,6 +746,7 @@ TEST(ref_diff_metrics_known)
     CHECK_INT(acc.holes, 1);
     CHECK_INT(acc.false_hits, 1);
     CHECK_INT(acc.off, 1);
+    /* Of the 4 pixels the reference hits: 2 (hole, false hit) and 3. */
     CHECK_NEAR(acc.coverage_pct, 50.0, 1e-12);
     CHECK_NEAR(acc.fail_pct, 75.0, 1e-12);
     CHECK_NEAR(acc.pos_median_px, 0.5, 1e-12);
@@ -727,6 +773,44 @@ TEST(ref_diff_metrics_known)
     CHECK_INT(sc_accuracy_compare(&ref, &other, &acc, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "size");
     sc_aov_free(&other);
+    sc_aov_free(&ref);
+    sc_aov_free(&test);
+}
+
+/* False hits count whatever the reference hits: against a reference that
+ * hits nothing, a test with hits scores infinite percentages (not 0);
+ * against one pixel of reference, one exact hit and three false hits fail
+ * 300 % of it. */
+TEST(ref_diff_false_hits_against_empty_reference)
+{
+    sc_camera cam = {.eye = {0, 0, 10}, .target = {0, 0, 0}, .fovy_deg = 60, .width = 2, .height = 2};
+    sc_aov ref, test;
+    sc_aov_alloc(&ref, &cam, 0);
+    sc_aov_alloc(&test, &cam, 0);
+    sc_accuracy acc;
+    sc_error err;
+    CHECK_INT(sc_accuracy_compare(&ref, &test, &acc, &err), SC_OK);
+    CHECK_NEAR(acc.coverage_pct, 0.0, 0);
+    CHECK_NEAR(acc.fail_pct, 0.0, 0);
+    for (int px = 1; px < 4; px++) {
+        test.surface[px] = 0;
+        test.t[px] = 10;
+        test.normal[3 * px + 2] = 1;
+    }
+    CHECK_INT(sc_accuracy_compare(&ref, &test, &acc, &err), SC_OK);
+    CHECK_INT(acc.false_hits, 3);
+    CHECK(isinf(acc.coverage_pct) && acc.coverage_pct > 0);
+    CHECK(isinf(acc.fail_pct) && acc.fail_pct > 0);
+    char line[512];
+    sc_accuracy_format(&acc, line, sizeof line);
+    CHECK_CONTAINS(line, "accuracy coverage_pct=inf fail_pct=inf ");
+    test.surface[0] = 0;
+    test.t[0] = 10;
+    ref.surface[0] = 0;
+    ref.t[0] = 10;
+    CHECK_INT(sc_accuracy_compare(&ref, &test, &acc, &err), SC_OK);
+    CHECK_NEAR(acc.coverage_pct, 300.0, 1e-12);
+    CHECK_NEAR(acc.fail_pct, 300.0, 1e-12);
     sc_aov_free(&ref);
     sc_aov_free(&test);
 }
@@ -808,6 +892,13 @@ TEST(ref_cli_ref_and_diff)
     snprintf(cmd, sizeof cmd, "%s diff %s/e.aov %s/b.aov", test_cli, dir, dir);
     CHECK(test_run(cmd, NULL, &errs) != 0);
     CHECK_CONTAINS(errs, "size");
+    free(errs);
+    /* A missing file: the system's reason. */
+    snprintf(cmd, sizeof cmd, "%s diff %s/b.aov %s/missing.aov", test_cli, dir, dir);
+    CHECK(test_run(cmd, &out, &errs) != 0);
+    CHECK_STR(out, "");
+    CHECK_CONTAINS(errs, "missing.aov: cannot open: No such file or directory");
+    free(out);
     free(errs);
 
     /* Bad input: a message naming the file, and no output written. */

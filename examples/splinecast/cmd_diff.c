@@ -13,9 +13,11 @@ static const char usage[] =
     "out.png stands for the AOV beside it, out.aov) and prints one line:\n"
     "  accuracy coverage_pct=P fail_pct=P pos_median_px=X pos_max_px=X\n"
     "           normal_mean_deg=A normal_max_deg=A [iters_mean=N iters_max=N]\n"
-    "Percentages are of the pixels REF hits: coverage = holes + false hits, fail =\n"
+    "Percentages are of the pixels either file hits (REF's hits plus the false\n"
+    "hits; 0 when neither hits anything): coverage = holes + false hits, fail =\n"
     "those plus pixels where both hit but the points are more than one pixel\n"
-    "footprint apart. Position errors are in pixel footprints at REF's distance and\n"
+    "footprint apart. So a TEST that hits where REF hits nothing scores 100.\n"
+    "Position errors are in pixel footprints at REF's distance and\n"
     "normal errors in degrees, both over the pixels both hit; iterations (when TEST\n"
     "has them) over TEST's hit pixels. Exits 1 when the two files differ in size or\n"
     "camera.\n";

@@ -104,13 +104,19 @@ static int add_scene_keys(const char *path, const scg_key *like, const int *iter
         return cli_report(&err);
     sc_key_options opts;
     options_like(like, &opts);
-    for (int s = 0; s < scene.nsurfaces; s++)
+    for (int s = 0; s < scene.nsurfaces; s++) {
+        /* `render` refuses such a scene: no program would draw it. */
+        if (sc_surface_drawable(&scene, s, &err) != SC_OK) {
+            sc_scene_free(&scene);
+            return cli_report(&err);
+        }
         for (int k = 0; k < niters; k++) {
             scg_key key;
             opts.max_iters = iters[k];
             sc_surface_key(&scene.surfaces[s], &opts, &key);
             add_key(set, &key);
         }
+    }
     sc_scene_free(&scene);
     return 0;
 }

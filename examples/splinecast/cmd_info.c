@@ -1,7 +1,8 @@
 /* cmd_info.c — `splinecast info SCENE`: what a scene holds, one line per
  * surface (degrees, rational, control net, trim loops and their curves),
- * what the reader skipped, loops dropped by validation and the world-space
- * bounding box of the control points. */
+ * what the reader skipped, loops dropped by validation, the world-space
+ * bounding box of the control points and the variant keys of the surfaces
+ * the GPU programs can draw. Any scene a reader accepts is described. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -14,11 +15,15 @@ static const char usage[] =
     "\n"
     "Reads SCENE (.bpt, .obj, .igs/.iges, or `teapot`) and prints:\n"
     "  surfaces N\n"
-    "  surface I deg P Q rational 0|1 ctrl NU NV loops L segments S   (one per surface)\n"
+    "  surface I deg P Q rational 0|1 ctrl NU NV loops L segments S   (one per surface;\n"
+    "                             S counts the trim curves over all L loops)\n"
     "  skipped TYPE N REASON      (what the reader did not turn into surfaces)\n"
     "  dropped_loops N            (when trim loops were dropped by validation)\n"
     "  bbox X0 Y0 Z0 X1 Y1 Z1     (world space, of the control points)\n"
-    "  key K                      (each distinct variant key the scene needs, sorted)\n";
+    "  key K                      (each distinct variant key the scene needs, sorted)\n"
+    "A surface the GPU programs cannot draw (a degree above 16) gets no key: a\n"
+    "warning on stderr names it and says why, and info still succeeds (`render`\n"
+    "refuses such a scene; `ref` and `eval` take it).\n";
 
 int cmd_info(int argc, char **argv)
 {
@@ -51,7 +56,8 @@ int cmd_info(int argc, char **argv)
     printf("bbox %.17g %.17g %.17g %.17g %.17g %.17g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
     char(*keys)[SCG_KEY_MAX] = NULL;
     int nkeys = 0;
-    int status = sc_scene_keys(&scene, NULL, &keys, &nkeys, &err);
+    sc_key_options opts = {.skip_undrawable = 1};
+    int status = sc_scene_keys(&scene, &opts, &keys, &nkeys, &err);
     for (int k = 0; k < nkeys; k++)
         printf("key %s\n", keys[k]);
     free(keys);
