@@ -38,7 +38,8 @@ int main(int argc, char **argv)
         return fail(&err);
 
     /* The renderer picks one key per surface; the runtime builds each
-     * distinct key's program once and caches it. */
+     * distinct key's program once, in the context's cache, so asking for
+     * the renderer's keys below returns the very programs it draws with. */
     sc_renderer_id renderer;
     if (sc_make_renderer(ctx, scene, &(sc_renderer_desc){0}, &renderer, &err) != SC_OK)
         return fail(&err);

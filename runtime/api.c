@@ -41,6 +41,7 @@ typedef enum problem {
     PROBLEM_NULL,
     PROBLEM_ZERO_HANDLE,
     PROBLEM_STALE_HANDLE,
+    PROBLEM_UNKNOWN_HANDLE,
     PROBLEM_POOL_FULL,
     PROBLEM_SCENE_SOURCE,
     PROBLEM_SCENE_NAME,
@@ -54,6 +55,7 @@ static const char *const problem_text[] = {
     [PROBLEM_NULL] = "is NULL",
     [PROBLEM_ZERO_HANDLE] = "is the zero handle (never made)",
     [PROBLEM_STALE_HANDLE] = "names an object that was destroyed",
+    [PROBLEM_UNKNOWN_HANDLE] = "names no object ever made",
     [PROBLEM_POOL_FULL] = "cannot be made: too many live objects of its kind",
     [PROBLEM_SCENE_SOURCE] = "gives both path and text: give one",
     [PROBLEM_SCENE_NAME] = "needs a name whose extension picks the reader (.bpt, .obj, .igs)",
@@ -171,7 +173,12 @@ static void *pool_get(const pool *p, uint32_t id, sc_error *err)
     }
     int index = slot_index(p, id);
     if (index < 0) {
-        invalid(err, what, PROBLEM_STALE_HANDLE, "0x%08x", (unsigned)id);
+        /* A slot's generation grows when its object is destroyed: an older
+         * one named an object of that slot, a later one was never given. */
+        int i = (int)(id & 0xffff) - 1;
+        int destroyed = i >= 0 && i < p->count && id >> 16 < p->slots[i].generation;
+        invalid(err, what, destroyed ? PROBLEM_STALE_HANDLE : PROBLEM_UNKNOWN_HANDLE, "0x%08x",
+                (unsigned)id);
         return NULL;
     }
     return p->slots[index].object;
@@ -673,6 +680,9 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
     if (!s || render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
         make_current(c, err) != SC_OK)
         return SC_FAIL;
+    /* The context's cache: sc_make_program on the renderer's keys returns
+     * the very programs it draws with. */
+    internal.programs = c->programs;
     renderer_object *r = sc_alloc(1, sizeof *r);
     r->context = c;
     r->scene = s;

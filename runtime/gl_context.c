@@ -103,14 +103,17 @@ static sc_gl_proc egl_get_proc(const char *name, void *user)
 
 /* A display on a hardware device when the device platform offers one (a
  * DRM device that is not Mesa's software device), else the surfaceless
- * platform. */
-static EGLDisplay egl_open_display(const char **platform)
+ * platform; EGL_NO_DISPLAY with err saying why when neither is there (some
+ * of those reasons leave no EGL error to name). */
+static EGLDisplay egl_open_display(const char **platform, sc_error *err)
 {
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    if (!get_display)
+    if (!client || !get_display) {
+        sc_fail(err, NULL, 0, "EGL: no platform displays (EGL_EXT_platform_base)");
         return EGL_NO_DISPLAY;
+    }
     if (has_extension(client, "EGL_EXT_platform_device")) {
         PFNEGLQUERYDEVICESEXTPROC query_devices =
             (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
@@ -132,11 +135,16 @@ static EGLDisplay egl_open_display(const char **platform)
             }
         }
     }
-    if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
+    if (!has_extension(client, "EGL_MESA_platform_surfaceless")) {
+        sc_fail(err, NULL, 0, "EGL: no hardware device and no surfaceless platform "
+                              "(EGL_MESA_platform_surfaceless)");
         return EGL_NO_DISPLAY;
+    }
     EGLDisplay d = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (d == EGL_NO_DISPLAY || !eglInitialize(d, NULL, NULL))
+    if (d == EGL_NO_DISPLAY || !eglInitialize(d, NULL, NULL)) {
+        sc_fail(err, NULL, 0, "EGL: no surfaceless display (%s)", egl_error_name(eglGetError()));
         return EGL_NO_DISPLAY;
+    }
     *platform = "egl-surfaceless";
     return d;
 }
@@ -144,10 +152,9 @@ static EGLDisplay egl_open_display(const char **platform)
 static int egl_create(sc_gl_context *ctx, int debug, sc_error *err)
 {
     const char *platform = "egl";
-    EGLDisplay display = egl_open_display(&platform);
+    EGLDisplay display = egl_open_display(&platform, err);
     if (display == EGL_NO_DISPLAY)
-        return sc_fail(err, NULL, 0, "EGL: no device or surfaceless display (%s)",
-                       egl_error_name(eglGetError()));
+        return SC_FAIL;
     ctx->egl_display = display;
     if (!eglBindAPI(EGL_OPENGL_API))
         return sc_fail(err, NULL, 0, "EGL: the display has no desktop OpenGL");
@@ -276,8 +283,8 @@ int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
     *out = NULL;
     sc_gl_context *ctx = sc_alloc(1, sizeof *ctx);
     int status = SC_FAIL;
+    sc_error egl_err = {0};
     if (desc->backend != SC_GL_BACKEND_OSMESA) {
-        sc_error egl_err = {0};
         status = egl_create(ctx, desc->debug, &egl_err);
         if (status != SC_OK) {
             release(ctx);
@@ -286,11 +293,15 @@ int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
         }
     }
     if (status != SC_OK) {
-        status = osmesa_create(ctx, err);
+        sc_error osmesa_err = {0};
+        status = osmesa_create(ctx, &osmesa_err);
         if (status != SC_OK) {
             release(ctx);
             free(ctx);
-            return SC_FAIL;
+            /* When EGL was tried, its reason matters as much as OSMesa's. */
+            if (desc->backend == SC_GL_BACKEND_OSMESA)
+                return sc_fail(err, NULL, 0, "%s", osmesa_err.message);
+            return sc_fail(err, NULL, 0, "%s; %s", egl_err.message, osmesa_err.message);
         }
     }
     size_t used = strlen(ctx->description);

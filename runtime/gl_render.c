@@ -3,7 +3,8 @@
  * (gl_data.h), the hulls (hulls.h) in one vertex buffer. A frame: order the
  * hulls by the draw-order policy, cut the order into draw calls (one per
  * run of hulls with the same program) and, for the manual early ray
- * termination, into batches separated by texture barriers; hulls holding
+ * termination, into batches, each reading the nearest distances the
+ * batches before it left (refreshed between batches); hulls holding
  * the eye go first, by their back faces, so that their rays still start.
  * The depth test keeps the image exact whatever the order and whatever
  * early termination skips: termination only drops work whose result the
@@ -75,17 +76,21 @@ struct sc_renderer {
     scg_patch_kind *kinds;   /* per surface */
     sc_program *surface_program;
     sc_program_cache *programs;
+    int own_programs;        /* the cache is the renderer's (not desc.programs) */
     sc_gpu_data data;
     sc_hulls hulls;
     int ngroups;
     group *groups;
+    int *surface_group;      /* per surface: its group */
     int *hull_group;         /* per hull: its group */
     GLuint vertex_array, vertex_buffer, index_buffer, colour_buffer, colour_texture;
     size_t hull_bytes, colour_bytes;
     sc_gl_target target;
-    GLuint nearest_view;     /* the uvt attachment seen with t in .r, as sc_nearest_t */
+    /* sc_nearest_t: the distance channel of the uvt attachment as the
+     * batches before the current one left it (R32F, the target's size). */
+    GLuint nearest_texture;
     sc_camera camera;        /* of the last frame */
-    int draw_calls, program_switches, barriers, culled, readbacks;  /* of the last frame */
+    int draw_calls, program_switches, culled, readbacks;  /* of the last frame */
     double compile_ms;
     /* per frame scratch */
     uint32_t *frame_indices;
@@ -94,8 +99,8 @@ struct sc_renderer {
     int *inside;             /* hulls holding the eye */
     draw_run *runs;
     double *group_seen;      /* per group, for the hybrid buckets */
-    float *nearest;          /* read back: the uvt attachment (nearest distance so
-                                far in .z) */
+    float *uvt;              /* read back: the uvt attachment */
+    float *nearest;          /* its distances (.z), for sc_nearest_t */
     float *tile_far;         /* its largest value per tile */
     double raster_origin[3]; /* what hull vertices are rasterised relative to */
     float *cosine;           /* per pixel: cosine of its ray to the view direction */
@@ -285,29 +290,32 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     return sc_gl_check(gl, "uploading the hulls", err);
 }
 
-/* Hulls by program: group g is drawn with program id g + 1, the programs
- * the surfaces asked for first (the cache numbers them in that order;
- * programs for hulls holding the eye come later). Built once; the inside
- * programs already compiled are kept. */
+/* One group per distinct program the surfaces are drawn with, in the order
+ * the surfaces first ask for it (the keys never change: a surface that
+ * would change its key needs a new renderer). */
 static void build_groups(sc_renderer *r)
 {
-    int ngroups = 0;
-    for (int s = 0; s < r->scene->nsurfaces; s++)
-        if ((int)r->surface_program[s].id > ngroups)
-            ngroups = (int)r->surface_program[s].id;
-    if (ngroups != r->ngroups) {
-        free(r->groups);
-        r->ngroups = ngroups;
-        r->groups = sc_alloc((size_t)(ngroups ? ngroups : 1), sizeof *r->groups);
-        r->group_seen = sc_realloc(r->group_seen, (size_t)(ngroups ? ngroups : 1),
-                                   sizeof(double));
-        for (int g = 0; g < ngroups; g++)
-            r->groups[g].program.id = (uint32_t)g + 1;
+    int n = r->scene->nsurfaces;
+    r->groups = sc_alloc((size_t)(n ? n : 1), sizeof *r->groups);
+    r->surface_group = sc_alloc((size_t)(n ? n : 1), sizeof *r->surface_group);
+    for (int s = 0; s < n; s++) {
+        int g = 0;
+        while (g < r->ngroups && r->groups[g].program.id != r->surface_program[s].id)
+            g++;
+        if (g == r->ngroups)
+            r->groups[r->ngroups++].program = r->surface_program[s];
+        r->surface_group[s] = g;
     }
+    r->group_seen = sc_alloc((size_t)(r->ngroups ? r->ngroups : 1), sizeof(double));
+}
+
+/* Each hull's group, after the hulls were (re)built. */
+static void group_hulls(sc_renderer *r)
+{
     r->hull_group = sc_realloc(r->hull_group, (size_t)(r->hulls.count ? r->hulls.count : 1),
                                sizeof(int));
     for (int k = 0; k < r->hulls.count; k++)
-        r->hull_group[k] = (int)r->surface_program[r->hulls.subpatches[k].surface].id - 1;
+        r->hull_group[k] = r->surface_group[r->hulls.subpatches[k].surface];
 }
 
 static void setup_vertex_array(sc_renderer *r)
@@ -368,9 +376,12 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     r->keys = sc_alloc((size_t)(n ? n : 1), sizeof *r->keys);
     r->kinds = sc_alloc((size_t)(n ? n : 1), sizeof *r->kinds);
     r->surface_program = sc_alloc((size_t)(n ? n : 1), sizeof *r->surface_program);
-    r->programs = sc_program_cache_create(gl);
+    r->own_programs = !r->desc.programs;
+    r->programs = r->own_programs ? sc_program_cache_create(gl) : r->desc.programs;
     double t0 = sc_now();
     for (int s = 0; s < n; s++) {
+        if (sc_surface_drawable(scene, s, err) != SC_OK)
+            goto fail;
         surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
         r->kinds[s] = r->keys[s].kind;
         if (sc_program_for_key(r->programs, &r->keys[s], &r->surface_program[s], err) != SC_OK)
@@ -385,6 +396,7 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     if (upload_hulls(r, err) != SC_OK)
         goto fail;
     build_groups(r);
+    group_hulls(r);
     *out = r;
     return SC_OK;
 fail:
@@ -397,8 +409,8 @@ void sc_renderer_destroy(sc_renderer *r)
     if (!r)
         return;
     const sc_gl *gl = r->gl;
-    if (r->nearest_view)
-        gl->DeleteTextures(1, &r->nearest_view);
+    if (r->nearest_texture)
+        gl->DeleteTextures(1, &r->nearest_texture);
     sc_gl_target_destroy(gl, &r->target);
     sc_gpu_data_free(gl, &r->data);
     GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};
@@ -409,9 +421,11 @@ void sc_renderer_destroy(sc_renderer *r)
         gl->DeleteTextures(1, &r->colour_texture);
     if (r->vertex_array)
         gl->DeleteVertexArrays(1, &r->vertex_array);
-    sc_program_cache_destroy(r->programs);
+    if (r->own_programs)
+        sc_program_cache_destroy(r->programs);
     sc_hulls_free(&r->hulls);
     free(r->groups);
+    free(r->surface_group);
     free(r->hull_group);
     free(r->keys);
     free(r->kinds);
@@ -422,6 +436,7 @@ void sc_renderer_destroy(sc_renderer *r)
     free(r->inside);
     free(r->runs);
     free(r->group_seen);
+    free(r->uvt);
     free(r->nearest);
     free(r->tile_far);
     free(r->cosine);
@@ -580,26 +595,31 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
     }
 }
 
-/* Whole hulls are culled between batches in the manual modes: the nearest
- * distance so far is read back, turned into depth along the view direction
- * (which, unlike the distance, a box's corners bound) and kept as its
- * largest value over tiles of NEAREST_TILE² pixels. */
+/* Between batches in the manual modes the uvt attachment is read back and
+ * its distances (.z, along the unit ray) go to sc_nearest_t, which the
+ * ert1/ert2 programs read instead of the attachment they write: GL leaves a
+ * fragment's read of a texel that fragments of the same draw write
+ * undefined, and hulls of one batch overlap on screen. On the CPU they
+ * also become depth along the view direction (which, unlike the distance,
+ * a box's corners bound), kept as its largest value over tiles of
+ * NEAREST_TILE² pixels for culling whole hulls. On llvmpipe reading all
+ * four channels is a plain copy and uploading one channel a quarter of
+ * that; a copy on the GPU by a compute program cost several times more. */
 enum { NEAREST_TILE = 8 };
 
-static void read_nearest_tiles(sc_renderer *r)
+static void refresh_nearest(sc_renderer *r)
 {
     const sc_camera *cam = &r->camera;
     const sc_gl *gl = r->gl;
     int w = r->target.width, h = r->target.height;
     int tw = (w + NEAREST_TILE - 1) / NEAREST_TILE, th = (h + NEAREST_TILE - 1) / NEAREST_TILE;
-    /* All four channels: the attachment's own format reads back as a copy,
-     * one channel alone goes through a per-pixel conversion. */
-    r->nearest = sc_realloc(r->nearest, 4 * (size_t)w * (size_t)h, sizeof(float));
+    r->uvt = sc_realloc(r->uvt, 4 * (size_t)w * (size_t)h, sizeof(float));
+    r->nearest = sc_realloc(r->nearest, (size_t)w * (size_t)h, sizeof(float));
     r->tile_far = sc_realloc(r->tile_far, (size_t)tw * (size_t)th, sizeof(float));
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-    /* uvt.z: the distance along the unit ray; rows bottom-up, as the window. */
+    /* Rows bottom-up, as the window, and so back into sc_nearest_t. */
     gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
-                        (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->nearest);
+                        (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->uvt);
     for (int t = 0; t < tw * th; t++)
         r->tile_far[t] = 0;
     /* Depth = distance × the cosine between the pixel's ray and the view
@@ -621,14 +641,18 @@ static void read_nearest_tiles(sc_renderer *r)
     }
     for (int y = 0; y < h; y++) {
         float *row = r->tile_far + (size_t)(y / NEAREST_TILE) * (size_t)tw;
-        const float *uvt = r->nearest + 4 * (size_t)y * (size_t)w;
+        const float *uvt = r->uvt + 4 * (size_t)y * (size_t)w;
+        float *t = r->nearest + (size_t)y * (size_t)w;
         const float *cosine = r->cosine + (size_t)y * (size_t)w;
         for (int x = 0; x < w; x++) {
-            float depth = uvt[4 * x + 2] * cosine[x];
+            t[x] = uvt[4 * x + 2];
+            float depth = t[x] * cosine[x];
             if (depth > row[x / NEAREST_TILE])
                 row[x / NEAREST_TILE] = depth;
         }
     }
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->TextureSubImage2D(r->nearest_texture, 0, 0, 0, w, h, GL_RED, GL_FLOAT, r->nearest);
     r->readbacks++;
 }
 
@@ -673,21 +697,17 @@ static int hull_hidden(const sc_renderer *r, const float vp[16], const double fw
     return 1;
 }
 
-/* The distance channel of the uvt attachment (t along the unit ray in .z)
- * seen through a view whose red channel is that .z: the texture the
- * ert1/ert2 programs read as sc_nearest_t. */
-static void make_nearest_view(sc_renderer *r)
+/* sc_nearest_t for a target of the current size. */
+static int make_nearest_texture(sc_renderer *r, sc_error *err)
 {
     const sc_gl *gl = r->gl;
-    if (r->nearest_view)
-        gl->DeleteTextures(1, &r->nearest_view);
-    gl->GenTextures(1, &r->nearest_view);
-    gl->TextureView(r->nearest_view, GL_TEXTURE_2D, r->target.colour[SCG_FRAG_OUT_UVT],
-                    GL_RGBA32F, 0, 1, 0, 1);
-    static const GLint swizzle[4] = {GL_BLUE, GL_ZERO, GL_ZERO, GL_ONE};
-    gl->TextureParameteriv(r->nearest_view, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
-    gl->TextureParameteri(r->nearest_view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TextureParameteri(r->nearest_view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (r->nearest_texture)
+        gl->DeleteTextures(1, &r->nearest_texture);
+    gl->CreateTextures(GL_TEXTURE_2D, 1, &r->nearest_texture);
+    gl->TextureStorage2D(r->nearest_texture, 1, GL_R32F, r->target.width, r->target.height);
+    gl->TextureParameteri(r->nearest_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TextureParameteri(r->nearest_texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return sc_gl_check(gl, "creating the nearest distances", err);
 }
 
 int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
@@ -700,10 +720,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
         sc_gl_target_destroy(gl, &r->target);
         sc_gl_target_desc td = {.width = cam->width, .height = cam->height};
         memcpy(td.formats, formats, sizeof td.formats);
-        if (sc_gl_target_create(gl, &td, &r->target, err) != SC_OK)
+        if (sc_gl_target_create(gl, &td, &r->target, err) != SC_OK ||
+            (manual && make_nearest_texture(r, err) != SC_OK))
             return SC_FAIL;
-        if (manual)
-            make_nearest_view(r);
         r->cosine_fovy = 0;
     }
     r->camera = *cam;
@@ -766,9 +785,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     sc_gpu_data_bind(gl, &r->data);
     gl->BindTextureUnit(COLOUR_UNIT, r->colour_texture);
     if (manual) {
-        gl->BindTextureUnit(NEAREST_T_UNIT, r->nearest_view);
-        /* The clear is a write the first batch reads. */
-        gl->TextureBarrier();
+        static const float far = 3.0e38f;
+        gl->ClearTexImage(r->nearest_texture, 0, GL_RED, GL_FLOAT, &far);
+        gl->BindTextureUnit(NEAREST_T_UNIT, r->nearest_texture);
     }
     for (int g = 0; g < r->ngroups; g++) {
         sc_program programs[2] = {r->groups[g].program, r->groups[g].inside};
@@ -784,7 +803,7 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
         }
     }
 
-    r->draw_calls = r->program_switches = r->barriers = r->culled = r->readbacks = 0;
+    r->draw_calls = r->program_switches = r->culled = r->readbacks = 0;
     GLuint current = 0;
     int nruns = 0, nidx = 0;
     for (int g = 0; g < r->ngroups; g++)
@@ -792,13 +811,14 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
             if (r->hull_group[r->inside[i]] == g)
                 append_hull(r, &nruns, &nidx, r->inside[i], 1);
     submit_runs(r, nruns, 0, nidx, &current);
+    if (manual && ninside && n)
+        refresh_nearest(r);
     /* Batches of batch_hulls drawn hulls (all of them but in the manual
-     * modes), each after a texture barrier, so that it sees every hit of the
-     * batches before it; between batches, whole hulls behind those hits are
-     * culled. A read-back that culled nothing doubles the next batch: it
-     * costs a copy of the attachment, which only culling repays. */
+     * modes); after each, sc_nearest_t takes its hits, so that a batch sees
+     * every hit of the batches before it and none of its own, and whole
+     * hulls behind those hits are culled. A read-back that culled nothing
+     * doubles the next batch: it costs a copy, which only culling repays. */
     int batch = manual ? r->desc.batch_hulls : n + 1;
-    int drawn_before = ninside;
     for (int p = 0; p < n;) {
         int first = nidx, drawn = 0, culled = 0;
         nruns = 0;
@@ -816,14 +836,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
             batch *= 2;
         if (!drawn)
             break;
-        if (manual && drawn_before) {
-            gl->TextureBarrier();
-            r->barriers++;
-        }
         submit_runs(r, nruns, first, nidx, &current);
-        drawn_before += drawn;
         if (manual && p < n)
-            read_nearest_tiles(r);
+            refresh_nearest(r);
     }
     if (manual)
         gl->BindTextureUnit(NEAREST_T_UNIT, 0);
@@ -924,10 +939,30 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
     return status;
 }
 
+int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    if (!r->nearest_texture)
+        return sc_fail(err, NULL, 0, "no nearest distances: nothing drawn with manual early ray "
+                                     "termination yet");
+    int w = r->target.width, h = r->target.height;
+    float *rows = sc_alloc((size_t)w * (size_t)h, sizeof(float));
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->GetTextureImage(r->nearest_texture, 0, GL_RED, GL_FLOAT,
+                        (GLsizei)((size_t)w * (size_t)h * sizeof(float)), rows);
+    for (int y = 0; y < h; y++)
+        memcpy(t + (size_t)y * (size_t)w, rows + (size_t)(h - 1 - y) * (size_t)w,
+               (size_t)w * sizeof(float));
+    free(rows);
+    return sc_gl_check(gl, "reading the nearest distances", err);
+}
+
 int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
 {
     if (surface < 0 || surface >= r->scene->nsurfaces)
         return sc_fail(err, NULL, 0, "no surface %d in the scene", surface);
+    if (sc_surface_drawable(r->scene, surface, err) != SC_OK)
+        return SC_FAIL;
     scg_key key;
     surface_key(&r->scene->surfaces[surface], &r->desc, &key);
     if (!scg_key_equal(&key, &r->keys[surface]))
@@ -940,20 +975,21 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     if (sc_hulls_build(r->scene, &r->desc.hulls, &r->hulls, err) != SC_OK ||
         upload_hulls(r, err) != SC_OK)
         return SC_FAIL;
-    build_groups(r);
+    group_hulls(r);
     return SC_OK;
 }
 
 void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
 {
-    stats->programs = sc_program_count(r->programs);
+    stats->programs = r->ngroups;
+    for (int g = 0; g < r->ngroups; g++)
+        stats->programs += r->groups[g].inside.id != 0;
     stats->hulls = r->hulls.count;
     stats->triangles = r->hulls.nindices / 3;
     stats->gpu_bytes = r->data.bytes + r->hull_bytes + r->colour_bytes;
     stats->compile_ms = r->compile_ms;
     stats->draw_calls = r->draw_calls;
     stats->program_switches = r->program_switches;
-    stats->barriers = r->barriers;
     stats->culled_hulls = r->culled;
     stats->readbacks = r->readbacks;
 }

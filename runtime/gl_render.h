@@ -12,6 +12,7 @@
 #include "hulls.h"
 #include "image.h"
 #include "key.h"
+#include "programs.h"
 
 /* What the image shows. shade, uv, iters and hull come from the programs;
  * normal and depth are drawn from the AOVs. hull draws every proxy hull in a
@@ -78,10 +79,14 @@ typedef struct sc_render_desc {
                                (SCG_DEFAULT_TRIM_ITERS) */
     sc_ert_mode ert;        /* early ray termination */
     sc_draw_order order;    /* draw order policy */
-    int batch_hulls;        /* hulls per batch between texture barriers in
-                               the manual modes (doubling after a batch
-                               that culled no hull), and per bucket of the
-                               hybrid order (SC_RENDER_DEFAULT_BATCH_HULLS) */
+    int batch_hulls;        /* hulls per batch in the manual modes (a batch
+                               reads the hits of the batches before it;
+                               doubling after a batch that culled no hull),
+                               and per bucket of the hybrid order
+                               (SC_RENDER_DEFAULT_BATCH_HULLS) */
+    sc_program_cache *programs; /* the cache to take programs from, shared
+                               with whoever else uses it and outliving the
+                               renderer; NULL: a cache of the renderer's own */
 } sc_render_desc;
 
 /* Chosen by measurement (docs/speed.md, `splinecast bench --ert`, `--order`). */
@@ -90,7 +95,9 @@ typedef struct sc_render_desc {
 #define SC_RENDER_DEFAULT_BATCH_HULLS 32
 
 typedef struct sc_render_stats {
-    int programs;           /* distinct keys compiled */
+    int programs;           /* distinct programs drawn with: one per key,
+                               and the ert0 siblings for hulls holding the
+                               eye */
     int hulls;
     int triangles;
     size_t gpu_bytes;       /* patch data, hull vertices and indices, colours */
@@ -98,11 +105,11 @@ typedef struct sc_render_stats {
     /* Of the last frame: */
     int draw_calls;
     int program_switches;   /* glUseProgram calls */
-    int barriers;           /* glTextureBarrier calls (manual early ray
-                               termination) */
     int culled_hulls;       /* hulls not drawn: behind the hits so far at
                                every pixel they cover (manual modes) */
-    int readbacks;          /* reads of the nearest distance so far */
+    int readbacks;          /* reads of the nearest distances so far (manual
+                               modes), each also refreshing the texture the
+                               programs read them from */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;
@@ -118,6 +125,12 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err);
 /* The last frame: the image of the view (RGBA, allocated here) and, when
  * aov is not NULL, its AOVs (allocated here, with iteration counts). */
 int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err);
+
+/* The nearest distances so far as the programs of the last frame's last
+ * batch read them (sc_nearest_t, manual modes): per pixel, rows top-down,
+ * the distance along the unit ray of the nearest hit of the batches before
+ * that batch, 3e38 where there was none. w × h floats. */
+int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err);
 
 /* After surface s of the scene changed shape (same degrees and counts):
  * rebuilds its hulls and rewrites its GPU data alone. */

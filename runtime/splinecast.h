@@ -236,7 +236,9 @@ int sc_query_context_info(sc_context_id ctx, sc_context_info *info, sc_error *er
 
 /* The GL program of a key: from the context's cache, or generated,
  * validated, compiled and linked now. Asking again for the same key returns
- * the same handle. Programs live as long as their context. */
+ * the same handle; the context's renderers draw with the programs of that
+ * cache, so a renderer's keys (sc_query_renderer_keys) give the programs it
+ * draws with. Programs live as long as their context. */
 int sc_make_program(sc_context_id ctx, const char *key, sc_program_id *out, sc_error *err);
 
 typedef struct sc_program_info {
@@ -292,12 +294,14 @@ typedef struct sc_renderer_desc {
     int trim_iters;            /* clipping iterations per crossing (16) */
     sc_ray_termination termination;
     sc_hull_order order;
-    int batch_hulls;           /* hulls per batch between texture barriers in
-                                  the manual termination modes */
+    int batch_hulls;           /* hulls per batch in the manual termination
+                                  modes (a batch sees the hits of those
+                                  before it) and per hybrid bucket (32) */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data
- * and one program per distinct key. */
+ * and one program per distinct key, taken from the context's program cache
+ * (built there on first use). */
 int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
                      sc_renderer_id *out, sc_error *err);
 void sc_destroy_renderer(sc_renderer_id renderer);
@@ -373,7 +377,8 @@ int sc_save_aov(sc_frame_id frame, const char *path, sc_error *err);
 typedef struct sc_comparison {
     long reference_hits, test_hits, both_hit;
     long holes, false_hits, off;
-    double coverage_pct;       /* (holes + false hits) / reference hits × 100 */
+    double coverage_pct;       /* (holes + false hits) / reference hits × 100
+                                  (infinite when only the test hits) */
     double fail_pct;           /* (holes + false hits + off) / reference hits × 100 */
     double pos_median_px, pos_max_px;
     double normal_mean_deg, normal_max_deg;

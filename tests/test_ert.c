@@ -3,7 +3,7 @@
  * image of no early termination (fail_pct 0 against it, same surface at
  * every pixel), on the stacked patches and on the scene of six keys; the
  * scenes' known answers (the nearest layer everywhere, the CPU reference);
- * the batch rule (barrier count); hulls holding the eye; the options on the
+ * the batch rule (read-back count); hulls holding the eye; the options on the
  * command line. */
 #include "test.h"
 
@@ -96,7 +96,7 @@ TEST(ert_modes_stack_same_image)
     sc_aov none;
     sc_render_stats stats;
     CHECK(render(ctx, &scene, &desc, &stack_camera, &none, &stats));
-    CHECK_INT(stats.barriers, 0);
+    CHECK_INT(stats.readbacks, 0);
     int hulls = stats.hulls;
     long not_nearest = 0;
     for (int p = 0; p < none.width * none.height; p++)
@@ -119,20 +119,20 @@ TEST(ert_modes_stack_same_image)
             snprintf(what, sizeof what, "%s batch %d %s", sc_ert_mode_name(cases[c].ert),
                      cases[c].batch, sc_draw_order_name((sc_draw_order)order));
             ok = same_image(&none, &aov, what);
-            /* At most one barrier before every batch but the first (no
+            /* At most one read-back after every batch but the last (no
              * hull holds the eye), none without the texture. Layer 0 covers
              * the view and a layer's hulls reach at most 3 layers down (the
              * bump), so once a batch has drawn the top layers, every hull
              * more than 4 layers down (plus a tile's margin) is culled. */
             int batch = cases[c].batch ? cases[c].batch : SC_RENDER_DEFAULT_BATCH_HULLS;
             int manual = cases[c].ert != SC_ERT_CONSERVATIVE;
-            int most_barriers = manual ? (hulls + batch - 1) / batch - 1 : 0;
+            int most_readbacks = manual ? (hulls + batch - 1) / batch - 1 : 0;
             int per_layer = hulls / 16;
             int least_culled = manual && batch <= 2 * per_layer ? hulls - 6 * per_layer : 0;
-            if (stats.barriers > most_barriers || stats.culled_hulls < least_culled ||
+            if (stats.readbacks > most_readbacks || stats.culled_hulls < least_culled ||
                 (!manual && stats.culled_hulls)) {
-                fprintf(stderr, "  %s: %d barriers (at most %d), %d hulls culled (at least %d)\n",
-                        what, stats.barriers, most_barriers, stats.culled_hulls, least_culled);
+                fprintf(stderr, "  %s: %d read-backs (at most %d), %d hulls culled (at least %d)\n",
+                        what, stats.readbacks, most_readbacks, stats.culled_hulls, least_culled);
                 ok = 0;
             }
             sc_aov_free(&aov);
@@ -141,6 +141,59 @@ TEST(ert_modes_stack_same_image)
     sc_aov_free(&none);
     sc_scene_free(&scene);
     CHECK(ok);
+}
+
+/* The programs of a batch read only what the batches before it wrote (GL
+ * leaves reading what the same draw writes undefined): what they read is
+ * left in sc_nearest_t after the frame. With one batch that is the cleared
+ * value everywhere, though every pixel has a hit; with one hull per batch,
+ * front to back, it is the hits before the last batch: never nearer than
+ * the final hit, and the final hit itself wherever the last hull drawn
+ * (a hull of layer 0, as all later ones are culled) does not reach. */
+TEST(ert_nearest_from_earlier_batches)
+{
+    const char *why;
+    sc_gl_context *ctx = ert_context(&why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
+    int n = stack_camera.width * stack_camera.height;
+    float *nearest = sc_alloc((size_t)n, sizeof(float));
+    static const int batches[] = {1000000, 1};
+    for (int b = 0; b < 2; b++) {
+        sc_render_desc desc = {.ert = SC_ERT_MANUAL, .batch_hulls = batches[b],
+                               .order = SC_ORDER_FRONT_TO_BACK};
+        sc_renderer *r;
+        sc_aov aov;
+        CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, &desc, &r, &err), SC_OK);
+        CHECK_INT(sc_renderer_draw(r, &stack_camera, &err), SC_OK);
+        CHECK_INT(sc_renderer_read(r, NULL, &aov, &err), SC_OK);
+        CHECK_INT(sc_renderer_read_nearest(r, nearest, &err), SC_OK);
+        long cleared = 0, nearer = 0, final = 0, missed = 0;
+        for (int p = 0; p < n; p++) {
+            missed += aov.surface[p] < 0;
+            cleared += nearest[p] == 3.0e38f;
+            nearer += nearest[p] < aov.t[p];
+            final += nearest[p] == aov.t[p];
+        }
+        sc_render_stats stats;
+        sc_renderer_stats(r, &stats);
+        sc_renderer_destroy(r);
+        sc_aov_free(&aov);
+        CHECK_INT(missed, 0);
+        CHECK_INT(nearer, 0);
+        if (b == 0) {
+            CHECK_INT(stats.readbacks, 0);
+            CHECK_INT(cleared, n);
+        } else {
+            CHECK(stats.readbacks > 0);
+            CHECK(final > n / 2);
+        }
+    }
+    free(nearest);
+    sc_scene_free(&scene);
 }
 
 /* Six keys interleaved in depth: every policy, with and without early
@@ -219,7 +272,7 @@ TEST(ert_eye_inside_hull)
     desc.ert = SC_ERT_MANUAL;
     CHECK(render(ctx, &scene, &desc, &cam, &manual, &stats));
     CHECK_INT(stats.programs, 2);  /* ert1, and ert0 for the hull holding the eye */
-    CHECK_INT(stats.barriers, 1);  /* after the hull holding the eye */
+    CHECK_INT(stats.readbacks, 1);  /* after the hull holding the eye */
     sc_accuracy acc;
     CHECK_INT(sc_accuracy_compare(&ref, &manual, &acc, &err), SC_OK);
     CHECK_INT(acc.ref_hits, 64 * 64);

@@ -612,6 +612,49 @@ TEST(gl_render_degree12_generic)
     CHECK(acc.normal_mean_deg < 0.5);
 }
 
+/* The real 12×12 surface of OCC26138_Torus (a trimmed piece of a torus,
+ * 25 × 13 control points), generic program, seen face on: the default view
+ * frames its control net, where the surface is small. The tea set's
+ * accuracy targets. */
+TEST(gl_render_torus_degree12)
+{
+    const char *why;
+    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const char *path = test_data("iges/OCC26138_Torus.igs");
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(path, &scene, &err), SC_OK);
+    CHECK_INT(scene.nsurfaces, 1);
+    CHECK_INT(scene.surfaces[0].deg_u, 12);
+    CHECK_INT(scene.surfaces[0].deg_v, 12);
+    sc_camera cam = {.eye = {383, -89, -390}, .target = {5, 342, 303}, .fovy_deg = 30,
+                     .width = 96, .height = 96};
+    sc_aov ref, aov;
+    CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
+    sc_renderer *r;
+    CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err), SC_OK);
+    const scg_key *key = sc_renderer_surface_key(r, 0);
+    int generic = key->eval == SCG_EVAL_LOOP, trimmed = key->trim != SCG_TRIM_NONE;
+    int ok = sc_renderer_draw(r, &cam, &err) == SC_OK &&
+             sc_renderer_read(r, NULL, &aov, &err) == SC_OK;
+    sc_renderer_destroy(r);
+    sc_scene_free(&scene);
+    sc_accuracy acc;
+    int compared = ok && sc_accuracy_compare(&ref, &aov, &acc, &err) == SC_OK;
+    sc_aov_free(&ref);
+    if (ok)
+        sc_aov_free(&aov);
+    CHECK(generic);
+    CHECK(trimmed);
+    CHECK(compared);
+    CHECK(acc.ref_hits > 96 * 96 / 4);
+    CHECK(acc.fail_pct <= 0.1);
+    CHECK(acc.pos_median_px < 0.1);
+    CHECK(acc.normal_mean_deg < 0.5);
+}
+
 /* Changing one surface rewrites its ranges alone: the buffers afterwards
  * equal a fresh upload of the changed scene, and the bytes written are that
  * surface's share. */
@@ -708,4 +751,31 @@ TEST(gl_render_cli)
     CHECK_INT(test_run(cmd, &out, NULL), 0);
     CHECK_CONTAINS(out, "usage: splinecast render");
     free(out);
+}
+
+/* Why no context could be made, in the final error: with a driver capped
+ * below 4.5, the default backend's message gives EGL's reason and
+ * OSMesa's; an EGL with no display at all (no vendor library) says so,
+ * not "(EGL_SUCCESS)". */
+TEST(gl_context_failure_messages)
+{
+    char cmd[2048], *out = NULL, *err_text = NULL;
+    const char *dir = test_tmpdir();
+    snprintf(cmd, sizeof cmd,
+             "MESA_GL_VERSION_OVERRIDE=3.3 %s render teapot -o %s/capped.png --size 8x8", test_cli,
+             dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 1);
+    CHECK_CONTAINS(err_text, "EGL: no OpenGL 4.5 core context");
+    CHECK_CONTAINS(err_text, "; OSMesa: no OpenGL 4.5 core context");
+    free(out);
+    free(err_text);
+
+    snprintf(cmd, sizeof cmd,
+             "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent %s render teapot -o %s/novendor.png "
+             "--size 8x8 --frames 1 --backend egl", test_cli, dir);
+    test_run(cmd, &out, &err_text);
+    CHECK_CONTAINS(err_text, "EGL: ");
+    CHECK(strstr(err_text, "EGL_SUCCESS") == NULL);
+    free(out);
+    free(err_text);
 }

@@ -7,7 +7,11 @@
 #include "test.h"
 
 #include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
+
+#include <EGL/egl.h>
+#include <GL/glcorearb.h>
 
 #include "camera.h"
 #include "image.h"
@@ -226,6 +230,15 @@ TEST(install_api_scene_handles)
     CHECK_INT(sc_query_scene_info((sc_scene_id){0}, &info, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "zero handle");
     sc_destroy_scene((sc_scene_id){0});  /* harmless */
+    /* Handles never given: a slot not used yet, a generation not reached. */
+    CHECK_INT(sc_query_scene_info((sc_scene_id){1u << 16 | 999}, &info, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "scene handle names no object ever made: 0x000103e7");
+    CHECK_INT(sc_query_scene_info((sc_scene_id){((patch.id >> 16) + 5) << 16 | (patch.id & 0xffff)},
+                                  &info, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "names no object ever made");
+    sc_program_id never;
+    CHECK_INT(sc_make_program((sc_context_id){1u << 16 | 1}, "bez3x3", &never, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "context handle names no object ever made");
 
     /* Bad descs and bad input. */
     sc_scene_id bad = {7};
@@ -307,6 +320,66 @@ TEST(install_api_keys_and_glsl)
               SC_FAIL);
     CHECK_STR(err.key, "bez3x3-nonsense");
     CHECK(glsl.fragment == NULL);
+    sc_shutdown();
+}
+
+/* Counts the programs the library generates (one INFO line each). */
+static void count_generated(sc_log_level level, const char *message, void *user)
+{
+    (void)level;
+    if (strstr(message, ": generated in "))
+        ++*(int *)user;
+}
+
+/* A renderer made through the API takes its programs from the context's
+ * cache: its keys, asked of the specialization API, are cache hits that
+ * name the GL programs it draws with, and each is generated once. */
+TEST(install_api_renderer_shares_programs)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    int generated = 0;
+    sc_set_logger(count_generated, &generated);
+    sc_renderer_id renderer;
+    CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.termination =
+                                                                  SC_TERMINATION_NONE},
+                               &renderer, &err), SC_OK);
+    CHECK_INT(generated, 1);
+    sc_key key;
+    int count;
+    CHECK_INT(sc_query_renderer_keys(renderer, &key, 1, &count, &err), SC_OK);
+    CHECK_INT(count, 1);
+    sc_program_id program;
+    sc_program_info pinfo;
+    CHECK_INT(sc_make_program(ctx, key.text, &program, &err), SC_OK);
+    CHECK_INT(sc_query_program_info(program, &pinfo, &err), SC_OK);
+    sc_set_logger(NULL, NULL);
+    CHECK_INT(generated, 1);
+    sc_renderer_info rinfo;
+    CHECK_INT(sc_query_renderer_info(renderer, &rinfo, &err), SC_OK);
+    CHECK_INT(rinfo.programs, 1);
+
+    /* The program the frame was drawn with, seen through GL itself (on
+     * EGL, whose entry points serve whichever context is current). */
+    sc_frame_id frame;
+    CHECK_INT(sc_render(renderer, &(sc_camera_desc){.width = 32, .height = 32}, &frame, &err),
+              SC_OK);
+    sc_context_info cinfo;
+    CHECK_INT(sc_query_context_info(ctx, &cinfo, &err), SC_OK);
+    if (cinfo.backend == SC_BACKEND_EGL) {
+        PFNGLGETINTEGERVPROC get_integer =
+            (PFNGLGETINTEGERVPROC)eglGetProcAddress("glGetIntegerv");
+        CHECK(get_integer != NULL);
+        GLint current = 0;
+        get_integer(GL_CURRENT_PROGRAM, &current);
+        CHECK_INT((uint32_t)current, pinfo.gl_program);
+    }
     sc_shutdown();
 }
 

@@ -27,7 +27,7 @@ static const char usage[] =
     "line per program variant:\n"
     "  bench variant=specialized|generic frame_ms=T mpix_s=M covered=N iters_mean=I\n"
     "        gpu_bytes=B programs=P hulls=H triangles=T compile_ms=C compile_ms_per_program=C\n"
-    "        draw_calls=N program_switches=N barriers=N culled_hulls=N readbacks=N\n"
+    "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
     "and the ratio of the two frame times. frame_ms is the median of the timed\n"
     "frames after a warm-up frame; mpix_s counts covered pixels only.\n"
     "\n"
@@ -106,13 +106,13 @@ void bench_print(const char *variant, const char *extra, const bench_result *r)
 {
     printf("bench variant=%s%s frame_ms=%.2f mpix_s=%.2f covered=%ld iters_mean=%.3f "
            "gpu_bytes=%zu programs=%d hulls=%d triangles=%d compile_ms=%.1f "
-           "compile_ms_per_program=%.1f draw_calls=%d program_switches=%d barriers=%d "
-           "culled_hulls=%d readbacks=%d\n",
+           "compile_ms_per_program=%.1f draw_calls=%d program_switches=%d culled_hulls=%d "
+           "readbacks=%d\n",
            variant, extra, r->frame_ms, r->mpix_s, r->covered, r->iters_mean,
            r->stats.gpu_bytes, r->stats.programs, r->stats.hulls, r->stats.triangles,
            r->compile_ms, r->stats.programs ? r->compile_ms / r->stats.programs : 0,
-           r->stats.draw_calls, r->stats.program_switches, r->stats.barriers,
-           r->stats.culled_hulls, r->stats.readbacks);
+           r->stats.draw_calls, r->stats.program_switches, r->stats.culled_hulls,
+           r->stats.readbacks);
     fflush(stdout);
 }
 

@@ -41,14 +41,15 @@ static const char usage[] =
     "  --ert none|conservative|manual|manual-both   early ray termination\n"
     "                         (default manual)\n"
     "  --order front-to-back|by-program|hybrid   draw order (default hybrid)\n"
-    "  --batch N              hulls per batch between texture barriers (manual\n"
-    "                         early ray termination) and per hybrid bucket\n"
+    "  --batch N              hulls per batch, each seeing the hits of those\n"
+    "                         before it (manual early ray termination), and per\n"
+    "                         hybrid bucket\n"
     "                         (default 32)\n"
     "  --frames N             frames timed after a warm-up frame (default 5)\n"
     "  --ref                  also render the CPU reference and print its accuracy\n"
     "\n"
     "stdout: stats programs=N hulls=N triangles=N gpu_bytes=N compile_ms=T frame_ms=T\n"
-    "        draw_calls=N program_switches=N barriers=N culled_hulls=N readbacks=N\n"
+    "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
     "        (frame_ms: median of the timed frames; compile_ms: generating,\n"
     "        validating, compiling and linking the programs, plus the warm-up\n"
     "        frame's excess over the median, where llvmpipe finishes compiling)\n"
@@ -226,11 +227,9 @@ int cmd_render(int argc, char **argv)
     sc_renderer_stats(renderer, &stats);
     double compile_ms = stats.compile_ms + (warm_up > frame_ms ? warm_up - frame_ms : 0);
     printf("stats programs=%d hulls=%d triangles=%d gpu_bytes=%zu compile_ms=%.1f "
-           "frame_ms=%.2f draw_calls=%d program_switches=%d barriers=%d culled_hulls=%d "
-           "readbacks=%d\n",
+           "frame_ms=%.2f draw_calls=%d program_switches=%d culled_hulls=%d readbacks=%d\n",
            stats.programs, stats.hulls, stats.triangles, stats.gpu_bytes, compile_ms, frame_ms,
-           stats.draw_calls, stats.program_switches, stats.barriers, stats.culled_hulls,
-           stats.readbacks);
+           stats.draw_calls, stats.program_switches, stats.culled_hulls, stats.readbacks);
     fflush(stdout);
     if (with_ref) {
         sc_refcast *rc = NULL;
