@@ -342,6 +342,117 @@ int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err)
     return SC_OK;
 }
 
+/* ---- surfaces ---- */
+
+/* Surface `surface` of a scene handle, or NULL with err filled. */
+static sc_surface *scene_surface(sc_scene_id scene, int surface, sc_error *err)
+{
+    scene_object *s = pool_get(&scenes, scene.id, err);
+    if (!s)
+        return NULL;
+    if (surface < 0 || surface >= s->scene.nsurfaces) {
+        invalid(err, "surface", PROBLEM_RANGE, "%d (0 to %d)", surface, s->scene.nsurfaces - 1);
+        return NULL;
+    }
+    return &s->scene.surfaces[surface];
+}
+
+int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
+                          sc_error *err)
+{
+    const sc_surface *surf = scene_surface(scene, surface, err);
+    if (!surf)
+        return SC_FAIL;
+    if (!info)
+        return invalid(err, "info", PROBLEM_NULL, NULL);
+    *info = (sc_surface_info){.deg_u = surf->deg_u, .deg_v = surf->deg_v, .nu = surf->nu,
+                              .nv = surf->nv, .rational = surf->rational != 0,
+                              .trim_loops = surf->nloops};
+    snprintf(info->name, sizeof info->name, "%s", surf->name);
+    return SC_OK;
+}
+
+static int check_count(int count, const sc_surface *surf, const char *what, sc_error *err)
+{
+    if (count != surf->nu * surf->nv)
+        return invalid(err, what, PROBLEM_RANGE, "%d (the surface has %d x %d control points)",
+                       count, surf->nu, surf->nv);
+    return SC_OK;
+}
+
+int sc_query_surface_points(sc_scene_id scene, int surface, double *points, double *weights,
+                            int count, sc_error *err)
+{
+    const sc_surface *surf = scene_surface(scene, surface, err);
+    if (!surf || ((points || weights) && check_count(count, surf, "count", err) != SC_OK))
+        return SC_FAIL;
+    for (int k = 0; k < count && (points || weights); k++) {
+        const double *h = surf->cp + 4 * k;
+        for (int c = 0; c < 3 && points; c++)
+            points[3 * k + c] = h[c] / h[3];
+        if (weights)
+            weights[k] = h[3];
+    }
+    return SC_OK;
+}
+
+int sc_update_surface(sc_scene_id scene, const sc_surface_desc *desc, sc_error *err)
+{
+    static const sc_surface_desc nothing = {0};
+    if (!desc)
+        desc = &nothing;
+    scene_object *s = pool_get(&scenes, scene.id, err);
+    if (!s)
+        return SC_FAIL;
+    if (!desc->points && !desc->weights)
+        return SC_OK;
+    sc_surface *surf = scene_surface(scene, desc->surface, err);
+    if (!surf)
+        return SC_FAIL;
+    if (check_count(desc->count, surf, "sc_surface_desc.count", err) != SC_OK)
+        return SC_FAIL;
+    int n = desc->count;
+    for (int k = 0; k < 3 * n && desc->points; k++)
+        if (!isfinite(desc->points[k]))
+            return invalid(err, "sc_surface_desc.points", PROBLEM_RANGE,
+                           "coordinate %d of point %d is %g", k % 3, k / 3, desc->points[k]);
+    for (int k = 0; k < n && desc->weights; k++)
+        if (!(desc->weights[k] > 0 && isfinite(desc->weights[k])))
+            return invalid(err, "sc_surface_desc.weights", PROBLEM_RANGE,
+                           "weight %d is %g (positive and finite)", k, desc->weights[k]);
+    /* The new net beside the old one, so that a refusal changes nothing. */
+    sc_surface fresh = *surf;
+    fresh.cp = sc_alloc((size_t)n * 4, sizeof(double));
+    for (int k = 0; k < n; k++) {
+        const double *old = surf->cp + 4 * k;
+        double w = desc->weights ? desc->weights[k] : old[3];
+        for (int c = 0; c < 3; c++)
+            fresh.cp[4 * k + c] = (desc->points ? desc->points[3 * k + c] : old[c] / old[3]) * w;
+        fresh.cp[4 * k + 3] = w;
+    }
+    sc_surface_update_rational(&fresh);
+    if (s->users > 0 && (fresh.rational != 0) != (surf->rational != 0)) {
+        free(fresh.cp);
+        return sc_fail(err, NULL, 0,
+                       "surface %d would become %s, which changes its variant key: the "
+                       "scene's renderers cannot follow (destroy them first)",
+                       desc->surface, fresh.rational ? "rational" : "polynomial");
+    }
+    free(surf->cp);
+    surf->cp = fresh.cp;
+    surf->rational = fresh.rational;
+    int status = SC_OK;
+    for (int i = 0; i < renderers.count; i++) {
+        renderer_object *r = renderers.slots[i].object;
+        if (!r || r->scene != s || status != SC_OK)
+            continue;
+        if (make_current(r->context, err) != SC_OK ||
+            sc_renderer_update_surface(r->renderer, desc->surface, err) != SC_OK)
+            status = SC_FAIL;
+    }
+    return status;
+}
+
 /* ---- keys and generation ---- */
 
 static int trim_mode(sc_trim_method trim, const char *what, scg_trim_mode *mode, sc_error *err)
@@ -742,6 +853,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .hulls = stats.hulls,
         .triangles = stats.triangles,
         .gpu_bytes = stats.gpu_bytes,
+        .uploaded_bytes = stats.bytes_uploaded,
         .compile_ms = stats.compile_ms,
     };
     return SC_OK;

@@ -229,8 +229,10 @@ int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *ke
 }
 
 int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
-                               int surface, const scg_key *keys, sc_error *err)
+                               int surface, const scg_key *keys, int *moved, sc_error *err)
 {
+    if (moved)
+        *moved = 0;
     if (surface < 0 || surface >= data->nsurfaces || scene->nsurfaces != data->nsurfaces)
         return sc_fail(err, NULL, 0, "surface %d is not in the uploaded scene", surface);
     sc_gpu_surface *old = &data->surfaces[surface];
@@ -256,6 +258,8 @@ int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scen
         fresh.trim_count != old->trim_count) {
         /* The surface's data changed size: everything after it moves. */
         arrays_free(&a);
+        if (moved)
+            *moved = 1;
         sc_gpu_data_free(gl, data);
         return sc_gpu_data_upload(gl, scene, keys, data, err);
     }

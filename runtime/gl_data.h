@@ -43,9 +43,10 @@ int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *ke
                        sc_gpu_data *data, sc_error *err);
 /* After surface s of the scene changed: rewrites its ranges alone when its
  * data keeps its size (same degrees, counts, kind and trim pieces), else
- * uploads all. */
+ * uploads all; *moved (when not NULL) is then 1: the records of other
+ * surfaces may have new numbers. */
 int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
-                               int surface, const scg_key *keys, sc_error *err);
+                               int surface, const scg_key *keys, int *moved, sc_error *err);
 /* Binds the textures to their units (unit = scg_texture value). */
 void sc_gpu_data_bind(const sc_gl *gl, const sc_gpu_data *data);
 void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data);

@@ -85,6 +85,9 @@ struct sc_renderer {
     int *hull_group;         /* per hull: its group */
     GLuint vertex_array, vertex_buffer, index_buffer, colour_buffer, colour_texture;
     size_t hull_bytes, colour_bytes;
+    size_t hull_bytes_uploaded;  /* vertices, by the last upload_hulls or
+                                    upload_surface_hulls */
+    size_t bytes_uploaded;   /* by creation or the last surface update */
     sc_gl_target target;
     /* sc_nearest_t: the distance channel of the uvt attachment as the
      * batches before the current one left it (R32F, the target's size). */
@@ -224,14 +227,12 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
  * the colour attachment is sRGB, so the GL encodes it on the way in. */
 static float background_linear(void) { return (float)pow((0.2 + 0.055) / 1.055, 2.4); }
 
-/* Hull vertices relative to their record's centre (hull.vert), in the
- * parameters of their record's program: local [0, 1]² of the Bézier patch
- * for `bez` records, the surface's own for `nurbs`. */
-static int upload_hulls(sc_renderer *r, sc_error *err)
+/* The origin hulls are rasterised relative to: the middle of their box
+ * when the renderer is made, kept thereafter, so that a surface update
+ * rewrites the vertices of that surface alone. */
+static void set_raster_origin(sc_renderer *r)
 {
-    const sc_gl *gl = r->gl;
     const sc_hulls *h = &r->hulls;
-    gpu_vertex *verts = sc_alloc((size_t)h->nvertices, sizeof *verts);
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < h->count; k++)
         for (int c = 0; c < 3; c++) {
@@ -240,7 +241,17 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
         }
     for (int c = 0; c < 3; c++)
         r->raster_origin[c] = h->count ? 0.5 * (lo[c] + hi[c]) : 0;
-    for (int k = 0; k < h->count; k++) {
+}
+
+/* The GPU vertices of hulls [first, first + count), whose vertices start at
+ * verts[0]: relative to their record's centre (hull.vert), in the
+ * parameters of their record's program: local [0, 1]² of the Bézier patch
+ * for `bez` records, the surface's own for `nurbs`. */
+static void fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex *verts)
+{
+    const sc_hulls *h = &r->hulls;
+    int base = count ? h->subpatches[first].first_vertex : 0;
+    for (int k = first; k < first + count; k++) {
         const sc_subpatch *s = &h->subpatches[k];
         int nurbs = r->kinds[s->surface] == SCG_PATCH_NURBS;
         double du = nurbs ? (s->domain[1] - s->domain[0]) / (s->local[1] - s->local[0]) : 1;
@@ -251,7 +262,7 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
         int record = sc_gpu_data_record(&r->data, s->surface, s->patch);
         const double *centre = sc_gpu_data_record_centre(&r->data, record);
         for (int v = s->first_vertex; v < s->first_vertex + s->vertex_count; v++) {
-            gpu_vertex *g = &verts[v];
+            gpu_vertex *g = &verts[v - base];
             for (int c = 0; c < 3; c++) {
                 g->pos[c] = (float)(h->vertices[v].pos[c] - centre[c]);
                 g->raster_pos[c] = (float)(h->vertices[v].pos[c] - r->raster_origin[c]);
@@ -263,6 +274,16 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
             g->record = record;
         }
     }
+}
+
+/* Every hull into new vertex and index buffers, and the per-hull scratch
+ * of a frame sized for them. */
+static int upload_hulls(sc_renderer *r, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    const sc_hulls *h = &r->hulls;
+    gpu_vertex *verts = sc_alloc((size_t)(h->nvertices ? h->nvertices : 1), sizeof *verts);
+    fill_vertices(r, 0, h->count, verts);
     if (r->vertex_buffer)
         gl->DeleteBuffers(1, &r->vertex_buffer);
     if (r->index_buffer)
@@ -271,11 +292,13 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     gl->CreateBuffers(1, &r->index_buffer);
     size_t vbytes = (size_t)(h->nvertices ? h->nvertices : 1) * sizeof *verts;
     size_t ibytes = (size_t)(h->nindices ? h->nindices : 1) * sizeof(uint32_t);
-    gl->NamedBufferStorage(r->vertex_buffer, (GLsizeiptr)vbytes, verts, 0);
+    /* Dynamic: a surface update rewrites its range. */
+    gl->NamedBufferStorage(r->vertex_buffer, (GLsizeiptr)vbytes, verts, GL_DYNAMIC_STORAGE_BIT);
     /* Rewritten every frame in drawing order. */
     gl->NamedBufferStorage(r->index_buffer, (GLsizeiptr)ibytes, NULL, GL_DYNAMIC_STORAGE_BIT);
     free(verts);
     r->hull_bytes = vbytes + ibytes;
+    r->hull_bytes_uploaded = vbytes;
     GLuint vao = r->vertex_array;
     gl->VertexArrayVertexBuffer(vao, 0, r->vertex_buffer, 0, sizeof(gpu_vertex));
     gl->VertexArrayElementBuffer(vao, r->index_buffer);
@@ -288,6 +311,25 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     /* At most one run per hull, plus the inside hulls' runs per group. */
     r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
     return sc_gl_check(gl, "uploading the hulls", err);
+}
+
+/* The vertices of surface s's hulls, rewritten in their range of the
+ * vertex buffer (its hulls kept their counts, so nothing else moved; the
+ * index buffer is written every frame anyway). */
+static int upload_surface_hulls(sc_renderer *r, int s, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    const sc_hull_range *range = &r->hulls.surfaces[s];
+    r->hull_bytes_uploaded = (size_t)range->vertex_count * sizeof(gpu_vertex);
+    if (!range->vertex_count)
+        return SC_OK;
+    gpu_vertex *verts = sc_alloc((size_t)range->vertex_count, sizeof *verts);
+    fill_vertices(r, range->first_subpatch, range->subpatch_count, verts);
+    gl->NamedBufferSubData(r->vertex_buffer,
+                           (GLintptr)((size_t)range->first_vertex * sizeof(gpu_vertex)),
+                           (GLsizeiptr)r->hull_bytes_uploaded, verts);
+    free(verts);
+    return sc_gl_check(gl, "updating a surface's hulls", err);
 }
 
 /* One group per distinct program the surfaces are drawn with, in the order
@@ -393,10 +435,12 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
         goto fail;
     setup_vertex_array(r);
     upload_colours(r);
+    set_raster_origin(r);
     if (upload_hulls(r, err) != SC_OK)
         goto fail;
     build_groups(r);
     group_hulls(r);
+    r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded + r->colour_bytes;
     *out = r;
     return SC_OK;
 fail:
@@ -967,15 +1011,22 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     surface_key(&r->scene->surfaces[surface], &r->desc, &key);
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
-    if (sc_gpu_data_update_surface(r->gl, &r->data, r->scene, surface, r->keys, err) != SC_OK)
+    int hulls_moved, records_moved;
+    if (sc_hulls_update_surface(&r->hulls, r->scene, surface, &hulls_moved, err) != SC_OK ||
+        sc_gpu_data_update_surface(r->gl, &r->data, r->scene, surface, r->keys, &records_moved,
+                                   err) != SC_OK)
         return SC_FAIL;
-    /* Hulls are cheap to build and their count may change: all of them are
-     * rebuilt, the patch data of the other surfaces stays. */
-    sc_hulls_free(&r->hulls);
-    if (sc_hulls_build(r->scene, &r->desc.hulls, &r->hulls, err) != SC_OK ||
-        upload_hulls(r, err) != SC_OK)
-        return SC_FAIL;
-    group_hulls(r);
+    /* Vertices carry their record's number and centre: when other hulls or
+     * records moved, every vertex is written again. */
+    if (!hulls_moved && !records_moved) {
+        if (upload_surface_hulls(r, surface, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        if (upload_hulls(r, err) != SC_OK)
+            return SC_FAIL;
+        group_hulls(r);
+    }
+    r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded;
     return SC_OK;
 }
 
@@ -987,6 +1038,7 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->hulls = r->hulls.count;
     stats->triangles = r->hulls.nindices / 3;
     stats->gpu_bytes = r->data.bytes + r->hull_bytes + r->colour_bytes;
+    stats->bytes_uploaded = r->bytes_uploaded;
     stats->compile_ms = r->compile_ms;
     stats->draw_calls = r->draw_calls;
     stats->program_switches = r->program_switches;

@@ -101,6 +101,9 @@ typedef struct sc_render_stats {
     int hulls;
     int triangles;
     size_t gpu_bytes;       /* patch data, hull vertices and indices, colours */
+    size_t bytes_uploaded;  /* by creation or the last surface update: patch
+                               data, hull vertices (and colours at creation;
+                               the index buffer is written every frame) */
     double compile_ms;      /* generating, validating, compiling and linking */
     /* Of the last frame: */
     int draw_calls;
@@ -132,8 +135,13 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err);
  * that batch, 3e38 where there was none. w × h floats. */
 int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err);
 
-/* After surface s of the scene changed shape (same degrees and counts):
- * rebuilds its hulls and rewrites its GPU data alone. */
+/* After surface s of the scene changed shape (same degrees, counts and
+ * key): rebuilds its hulls alone, with the hull tolerance the renderer was
+ * made with, and rewrites its patch data and hull vertices in their ranges
+ * of the GPU buffers; when its data or hull counts changed size, the
+ * buffers are uploaded whole. A surface whose key changed is refused,
+ * changing nothing; after any other failure the renderer may draw the
+ * surface half changed and should be destroyed. */
 int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err);
 
 void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats);

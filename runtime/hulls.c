@@ -420,6 +420,56 @@ static int uniform(builder *b, const piece *whole, int n, sc_error *err)
     return status;
 }
 
+/* A builder appending to out with the options of out->desc and out->tolerance. */
+static int builder_open(builder *b, sc_hulls *out, sc_error *err)
+{
+    *b = (builder){.out = out, .tolerance = out->tolerance, .max_depth = out->desc.max_depth};
+    b->qhull_log = fopen("/dev/null", "w");
+    if (!b->qhull_log)
+        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
+    return SC_OK;
+}
+
+/* Appends the hulls of surface si and says where they went. */
+static int build_surface(builder *b, const sc_scene *scene, int si, sc_hull_range *range,
+                         sc_error *err)
+{
+    sc_hulls *h = b->out;
+    const sc_surface *surf = &scene->surfaces[si];
+    sc_bezier_patch *patches;
+    int npatches;
+    sc_surface_to_bezier(surf, &patches, &npatches);
+    b->surface = surf;
+    b->surface_index = si;
+    range->first_subpatch = h->count;
+    range->first_vertex = h->nvertices;
+    range->first_index = h->nindices;
+    int status = SC_OK;
+    for (int pi = 0; pi < npatches && status == SC_OK; pi++) {
+        b->patch = &patches[pi];
+        b->patch_index = pi;
+        piece p = {.deg_u = patches[pi].deg_u, .deg_v = patches[pi].deg_v,
+                   .local = {0, 1, 0, 1}};
+        if (h->desc.mode == SC_HULL_UNIFORM) {
+            p.cp = patches[pi].cp;
+            status = uniform(b, &p, h->desc.divisions, err);
+        } else {
+            p.cp = sc_alloc(piece_points(&p) * 4, sizeof(double));
+            memcpy(p.cp, patches[pi].cp, piece_points(&p) * 4 * sizeof(double));
+            status = refine(b, &p, 0, err);
+        }
+    }
+    range->subpatch_count = h->count - range->first_subpatch;
+    range->vertex_count = h->nvertices - range->first_vertex;
+    range->index_count = h->nindices - range->first_index;
+    range->patch_count = npatches;
+    h->npatches += npatches;
+    for (int pi = 0; pi < npatches; pi++)
+        sc_bezier_patch_free(&patches[pi]);
+    free(patches);
+    return status;
+}
+
 int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
                    sc_error *err)
 {
@@ -427,46 +477,105 @@ int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hu
     if (!desc)
         desc = &defaults;
     memset(hulls, 0, sizeof *hulls);
-    builder b = {.out = hulls};
+    hulls->desc = *desc;
+    if (!(hulls->desc.tolerance > 0))
+        hulls->desc.tolerance = SC_HULL_DEFAULT_TOLERANCE;
+    if (hulls->desc.max_depth <= 0)
+        hulls->desc.max_depth = DEFAULT_MAX_DEPTH;
+    if (hulls->desc.divisions <= 0)
+        hulls->desc.divisions = DEFAULT_DIVISIONS;
     double lo[3], hi[3];
     double diag = sc_scene_bounds(scene, lo, hi) ? dist3(lo, hi) : 0;
-    b.tolerance = (desc->tolerance > 0 ? desc->tolerance : SC_HULL_DEFAULT_TOLERANCE) * diag;
-    b.max_depth = desc->max_depth > 0 ? desc->max_depth : DEFAULT_MAX_DEPTH;
-    int divisions = desc->divisions > 0 ? desc->divisions : DEFAULT_DIVISIONS;
-    b.qhull_log = fopen("/dev/null", "w");
-    if (!b.qhull_log)
-        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
+    hulls->tolerance = hulls->desc.tolerance * diag;
+    builder b;
+    if (builder_open(&b, hulls, err) != SC_OK)
+        return SC_FAIL;
+    hulls->nsurfaces = scene->nsurfaces;
+    hulls->surfaces = sc_alloc((size_t)(scene->nsurfaces ? scene->nsurfaces : 1),
+                               sizeof *hulls->surfaces);
     int status = SC_OK;
-    for (int si = 0; si < scene->nsurfaces && status == SC_OK; si++) {
-        const sc_surface *surf = &scene->surfaces[si];
-        sc_bezier_patch *patches;
-        int npatches;
-        sc_surface_to_bezier(surf, &patches, &npatches);
-        b.surface = surf;
-        b.surface_index = si;
-        for (int pi = 0; pi < npatches && status == SC_OK; pi++) {
-            b.patch = &patches[pi];
-            b.patch_index = pi;
-            piece p = {.deg_u = patches[pi].deg_u, .deg_v = patches[pi].deg_v,
-                       .local = {0, 1, 0, 1}};
-            if (desc->mode == SC_HULL_UNIFORM) {
-                p.cp = patches[pi].cp;
-                status = uniform(&b, &p, divisions, err);
-            } else {
-                p.cp = sc_alloc(piece_points(&p) * 4, sizeof(double));
-                memcpy(p.cp, patches[pi].cp, piece_points(&p) * 4 * sizeof(double));
-                status = refine(&b, &p, 0, err);
-            }
-        }
-        hulls->npatches += npatches;
-        for (int pi = 0; pi < npatches; pi++)
-            sc_bezier_patch_free(&patches[pi]);
-        free(patches);
-    }
+    for (int si = 0; si < scene->nsurfaces && status == SC_OK; si++)
+        status = build_surface(&b, scene, si, &hulls->surfaces[si], err);
     fclose(b.qhull_log);
     if (status != SC_OK)
         sc_hulls_free(hulls);
     return status;
+}
+
+/* Turns `old` elements of size `size` at `first` of an array of *count
+ * into room for `fresh` ones, moving those after them. */
+static void *splice(void *array, int *count, int first, int old, int fresh, size_t size)
+{
+    int total = *count - old + fresh, rest = *count - first - old;
+    char *a = array;
+    if (fresh > old)
+        a = sc_realloc(a, (size_t)total, size);
+    if (rest > 0)
+        memmove(a + (size_t)(first + fresh) * size, a + (size_t)(first + old) * size,
+                (size_t)rest * size);
+    *count = total;
+    return a;
+}
+
+int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface, int *moved,
+                            sc_error *err)
+{
+    if (surface < 0 || surface >= hulls->nsurfaces || scene->nsurfaces != hulls->nsurfaces)
+        return sc_fail(err, NULL, 0, "surface %d is not in the scene the hulls were built for",
+                       surface);
+    sc_hulls one = {.desc = hulls->desc, .tolerance = hulls->tolerance};
+    builder b;
+    if (builder_open(&b, &one, err) != SC_OK)
+        return SC_FAIL;
+    sc_hull_range fresh;
+    int status = build_surface(&b, scene, surface, &fresh, err);
+    fclose(b.qhull_log);
+    if (status != SC_OK) {
+        sc_hulls_free(&one);
+        return SC_FAIL;
+    }
+    sc_hull_range *old = &hulls->surfaces[surface];
+    int dsub = one.count - old->subpatch_count;
+    int dvert = one.nvertices - old->vertex_count;
+    int didx = one.nindices - old->index_count;
+    *moved = dsub || dvert || didx;
+    if (*moved) {
+        hulls->subpatches = splice(hulls->subpatches, &hulls->count, old->first_subpatch,
+                                   old->subpatch_count, one.count, sizeof *hulls->subpatches);
+        hulls->vertices = splice(hulls->vertices, &hulls->nvertices, old->first_vertex,
+                                 old->vertex_count, one.nvertices, sizeof *hulls->vertices);
+        hulls->indices = splice(hulls->indices, &hulls->nindices, old->first_index,
+                                old->index_count, one.nindices, sizeof *hulls->indices);
+        for (int k = old->first_subpatch + one.count; k < hulls->count; k++) {
+            hulls->subpatches[k].first_vertex += dvert;
+            hulls->subpatches[k].first_index += didx;
+        }
+        for (int i = old->first_index + one.nindices; i < hulls->nindices; i++)
+            hulls->indices[i] = (uint32_t)((int)hulls->indices[i] + dvert);
+        for (int s = surface + 1; s < hulls->nsurfaces; s++) {
+            hulls->surfaces[s].first_subpatch += dsub;
+            hulls->surfaces[s].first_vertex += dvert;
+            hulls->surfaces[s].first_index += didx;
+        }
+    }
+    for (int k = 0; k < one.count; k++) {
+        sc_subpatch *s = &hulls->subpatches[old->first_subpatch + k];
+        *s = one.subpatches[k];
+        s->first_vertex += old->first_vertex;
+        s->first_index += old->first_index;
+    }
+    if (one.nvertices)
+        memcpy(hulls->vertices + old->first_vertex, one.vertices,
+               (size_t)one.nvertices * sizeof *one.vertices);
+    for (int i = 0; i < one.nindices; i++)
+        hulls->indices[old->first_index + i] = one.indices[i] + (uint32_t)old->first_vertex;
+    hulls->npatches += one.npatches - old->patch_count;
+    old->subpatch_count = one.count;
+    old->vertex_count = one.nvertices;
+    old->index_count = one.nindices;
+    old->patch_count = one.npatches;
+    sc_hulls_free(&one);
+    return SC_OK;
 }
 
 void sc_hulls_free(sc_hulls *hulls)
@@ -474,6 +583,7 @@ void sc_hulls_free(sc_hulls *hulls)
     free(hulls->subpatches);
     free(hulls->vertices);
     free(hulls->indices);
+    free(hulls->surfaces);
     memset(hulls, 0, sizeof *hulls);
 }
 

@@ -54,6 +54,16 @@ typedef struct sc_subpatch {
     double lo[3], hi[3]; /* bounding box of the hull */
 } sc_subpatch;
 
+/* Where one surface's hulls sit: its sub-patches, and the vertices and
+ * indices they use, are contiguous, so that the surface can be rebuilt
+ * alone. */
+typedef struct sc_hull_range {
+    int first_subpatch, subpatch_count;
+    int first_vertex, vertex_count;
+    int first_index, index_count;
+    int patch_count;     /* Bézier patches */
+} sc_hull_range;
+
 typedef struct sc_hulls {
     int count;
     sc_subpatch *subpatches;
@@ -63,6 +73,11 @@ typedef struct sc_hulls {
     uint32_t *indices;   /* into vertices; triangles counter-clockwise seen
                             from outside the hull */
     int npatches;        /* Bézier patches the sub-patches came from */
+    int nsurfaces;
+    sc_hull_range *surfaces; /* per surface of the scene */
+    sc_hull_desc desc;   /* what they were built with, defaults filled in */
+    double tolerance;    /* adaptive: the flatness bound in world units,
+                            fixed when the hulls were built */
 } sc_hulls;
 
 /* "uniform:N" or "adaptive:TOL" (TOL as in sc_hull_desc.tolerance). */
@@ -75,6 +90,16 @@ void sc_hull_desc_format(const sc_hull_desc *desc, char *buf, size_t size);
 int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
                    sc_error *err);
 void sc_hulls_free(sc_hulls *hulls);
+
+/* After surface s of the scene changed shape: rebuilds its hulls alone, as
+ * sc_hulls_build would with the tolerance the hulls were built with (the
+ * same hulls, unless the change moved the scene's bounding box, which a
+ * full build would take its tolerance from). *moved is 0 when the
+ * surface's sub-patch, vertex and index counts stayed, so that only its
+ * ranges changed; 1 when the hulls of the surfaces after it moved. On
+ * failure the hulls are left as they were. */
+int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface, int *moved,
+                            sc_error *err);
 
 /* Whether the world-space point p lies inside hull `index` (or on it):
  * hulls that hold the eye are drawn by their back faces. */

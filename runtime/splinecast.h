@@ -17,6 +17,8 @@
  *   rendering and accuracy  sc_make_renderer → sc_render → sc_save_png /
  *                           sc_save_aov; sc_render_reference (CPU, double
  *                           precision) → sc_compare_frames
+ *   changing a surface      sc_update_surface (renderers of the scene
+ *                           rewrite that surface's GPU data alone)
  *
  * Calls are made from one thread: GL contexts belong to the thread that made
  * them, and the handle pools are not locked. */
@@ -105,6 +107,45 @@ typedef struct sc_scene_info {
 } sc_scene_info;
 
 int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);
+
+/* ---- surfaces --------------------------------------------------------- */
+
+/* One surface's control net. */
+typedef struct sc_surface_info {
+    char name[64];
+    int deg_u, deg_v;
+    int nu, nv;                /* control points along u and v */
+    int rational;
+    int trim_loops;
+} sc_surface_info;
+
+int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
+                          sc_error *err);
+
+/* The control points of a surface, nu × nv of them, u fastest: `points`
+ * 3 doubles each (x, y, z: Euclidean, in the surface's own coordinates,
+ * before its transform), `weights` 1 each. Either may be NULL. */
+int sc_query_surface_points(sc_scene_id scene, int surface, double *points, double *weights,
+                            int count, sc_error *err);
+
+/* New control points for one surface: same degrees, counts, knots and
+ * trims. Zero means default: NULL points or weights keep the current
+ * ones. `count` must be the surface's nu × nv when either is given. */
+typedef struct sc_surface_desc {
+    int surface;               /* index in the scene */
+    int count;                 /* control points given */
+    const double *points;      /* 3 per point, as sc_query_surface_points */
+    const double *weights;     /* 1 per point, positive */
+} sc_surface_desc;
+
+/* Replaces a surface's control points and updates every renderer drawing
+ * the scene: each rebuilds that surface's hulls (with the hull tolerance
+ * it was made with) and rewrites its patch data and hull vertices alone.
+ * Refused, changing nothing, when renderers draw the scene and the new
+ * weights would make the surface rational or polynomial (a new variant
+ * key: make new renderers). The CPU reference and keys queried afterwards
+ * see the new surface. */
+int sc_update_surface(sc_scene_id scene, const sc_surface_desc *desc, sc_error *err);
 
 /* ---- variant keys and build-time generation ---------------------------- */
 
@@ -315,6 +356,9 @@ typedef struct sc_renderer_info {
     int programs;              /* distinct keys */
     int hulls, triangles;
     size_t gpu_bytes;          /* patch data, hulls, colours */
+    size_t uploaded_bytes;     /* sent to the GPU by sc_make_renderer or by
+                                  the last sc_update_surface: patch data and
+                                  hull vertices (and colours when made) */
     double compile_ms;         /* generating, validating, compiling, linking */
 } sc_renderer_info;
 

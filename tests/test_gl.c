@@ -679,7 +679,9 @@ TEST(gl_data_update_one_surface)
     CHECK_INT(data.nrecords, 3);
     CHECK_INT(data.npoints, 16 + 12 + 12);
     scene.surfaces[1].cp[4 * 5 + 2] += 0.5 * scene.surfaces[1].cp[4 * 5 + 3];
-    CHECK_INT(sc_gpu_data_update_surface(gl, &data, &scene, 1, keys, &err), SC_OK);
+    int moved = -1;
+    CHECK_INT(sc_gpu_data_update_surface(gl, &data, &scene, 1, keys, &moved, &err), SC_OK);
+    CHECK_INT(moved, 0);
     /* 12 points of 16 bytes and one record of 4 texels of 16 bytes */
     CHECK_INT(data.bytes_uploaded, 12 * 16 + 4 * 16);
     CHECK_INT(sc_gpu_data_upload(gl, &scene, keys, &fresh, &err), SC_OK);
@@ -703,6 +705,116 @@ TEST(gl_data_update_one_surface)
     sc_gpu_data_free(gl, &fresh);
     sc_scene_free(&scene);
     CHECK_INT(differ, 0);
+}
+
+/* fail_pct of renderer r's frame of cam against a renderer made fresh from
+ * its scene and against the CPU reference; *hits: the reference's hits. */
+static int against_fresh_and_reference(const sc_gl *gl, sc_renderer *r, const sc_scene *scene,
+                                       const sc_camera *cam, double *vs_fresh, double *vs_ref,
+                                       long *hits)
+{
+    sc_error err = {0};
+    sc_aov got = {0}, fresh_aov = {0}, ref = {0};
+    sc_renderer *fresh = NULL;
+    sc_refcast *rc = NULL;
+    sc_accuracy acc;
+    int ok = sc_renderer_draw(r, cam, &err) == SC_OK &&
+             sc_renderer_read(r, NULL, &got, &err) == SC_OK &&
+             sc_renderer_create(gl, scene, NULL, &fresh, &err) == SC_OK &&
+             sc_renderer_draw(fresh, cam, &err) == SC_OK &&
+             sc_renderer_read(fresh, NULL, &fresh_aov, &err) == SC_OK &&
+             sc_accuracy_compare(&fresh_aov, &got, &acc, &err) == SC_OK;
+    if (ok)
+        *vs_fresh = acc.fail_pct;
+    ok = ok && sc_refcast_prepare(scene, &rc, &err) == SC_OK &&
+         sc_refcast_render(rc, cam, NULL, &ref, NULL, &err) == SC_OK &&
+         sc_accuracy_compare(&ref, &got, &acc, &err) == SC_OK;
+    if (ok) {
+        *vs_ref = acc.fail_pct;
+        *hits = acc.ref_hits;
+    } else {
+        fprintf(stderr, "  %s\n", err.message);
+    }
+    sc_refcast_free(rc);
+    sc_renderer_destroy(fresh);
+    sc_aov_free(&got);
+    sc_aov_free(&fresh_aov);
+    sc_aov_free(&ref);
+    return ok;
+}
+
+/* A renderer after one surface of its scene changed: a body patch of the
+ * teapot lifted (its hulls keep their counts), then bent inwards (adaptive
+ * subdivision cuts it into more pieces), the scene's box unchanged. Each
+ * time its image equals a fresh renderer's and the reference's, and what
+ * went to the GPU is that surface's patch data and hull vertices — every
+ * hull vertex when its hulls changed number, since the later ones moved. */
+TEST(gl_render_update_one_surface)
+{
+    const char *why;
+    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const sc_gl *gl = sc_gl_context_gl(ctx);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
+    sc_camera cam;
+    sc_camera_default(&scene, &cam);
+    cam.width = cam.height = 96;
+    sc_renderer *r;
+    CHECK_INT(sc_renderer_create(gl, &scene, NULL, &r, &err), SC_OK);
+    sc_render_stats made, st;
+    sc_renderer_stats(r, &made);
+    /* One bicubic Bézier patch: 16 points and one record of 4 texels, 16
+     * bytes each. A hull vertex: two positions, (u, v) and a domain (12
+     * floats) and a record (one int). */
+    const size_t patch_bytes = 16 * 16 + 4 * 16, vertex_bytes = 13 * 4;
+    sc_surface *body = &scene.surfaces[4];
+    for (int k = 0; k < body->nu * body->nv; k++)
+        body->cp[4 * k + 2] += 0.2 * body->cp[4 * k + 3];
+    double vs_fresh = -1, vs_ref = -1;
+    long hits = 0;
+    /* Not updated yet: the old patch is drawn. */
+    CHECK(against_fresh_and_reference(gl, r, &scene, &cam, &vs_fresh, &vs_ref, &hits));
+    CHECK(vs_ref > 1);
+    CHECK_INT(sc_renderer_update_surface(r, 4, &err), SC_OK);
+    sc_renderer_stats(r, &st);
+    sc_hulls hulls;
+    CHECK_INT(sc_hulls_build(&scene, NULL, &hulls, &err), SC_OK);
+    size_t lifted = patch_bytes + (size_t)hulls.surfaces[4].vertex_count * vertex_bytes;
+    sc_hulls_free(&hulls);
+    CHECK_INT(st.bytes_uploaded, lifted);
+    CHECK(st.bytes_uploaded * 20 < made.bytes_uploaded);
+    CHECK_INT(st.hulls, made.hulls);
+    CHECK(against_fresh_and_reference(gl, r, &scene, &cam, &vs_fresh, &vs_ref, &hits));
+    CHECK(hits > 96 * 96 / 10);
+    CHECK_NEAR(vs_fresh, 0, 0);
+    CHECK_NEAR(vs_ref, 0, 0);
+
+    for (int k = 5; k <= 6; k++)  /* the two inner control points of row 1 */
+        for (int c = 0; c < 2; c++)
+            body->cp[4 * k + c] *= 0.2;
+    CHECK_INT(sc_renderer_update_surface(r, 4, &err), SC_OK);
+    sc_renderer_stats(r, &st);
+    CHECK_INT(sc_hulls_build(&scene, NULL, &hulls, &err), SC_OK);
+    size_t bent = patch_bytes + (size_t)hulls.nvertices * vertex_bytes;
+    int nhulls = hulls.count;
+    sc_hulls_free(&hulls);
+    CHECK(st.hulls > made.hulls);
+    CHECK_INT(st.hulls, nhulls);
+    CHECK_INT(st.bytes_uploaded, bent);
+    CHECK(against_fresh_and_reference(gl, r, &scene, &cam, &vs_fresh, &vs_ref, &hits));
+    CHECK_NEAR(vs_fresh, 0, 0);
+    CHECK_NEAR(vs_ref, 0, 0);
+
+    /* A weight that makes the patch rational changes its key: refused. */
+    body->cp[4 * 5 + 3] = 2;
+    sc_surface_update_rational(body);
+    CHECK_INT(sc_renderer_update_surface(r, 4, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "surface 4 changed its key");
+    sc_renderer_destroy(r);
+    sc_scene_free(&scene);
 }
 
 /* The command line: the stats line, both files, and a clean refusal of a

@@ -6,6 +6,7 @@
 #include "test.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "hulls.h"
 #include "io.h"
@@ -290,6 +291,91 @@ TEST(hulls_nurbs_tiling)
     int outside = 0;
     check_containment(&scene, &hulls, 30, &outside);
     CHECK_INT(outside, 0);
+    sc_hulls_free(&hulls);
+    sc_scene_free(&scene);
+}
+
+/* Two hull sets are the same, number for number. */
+static int hulls_differ(const sc_hulls *a, const sc_hulls *b)
+{
+    if (a->count != b->count || a->nvertices != b->nvertices || a->nindices != b->nindices ||
+        a->npatches != b->npatches || a->nsurfaces != b->nsurfaces)
+        return 1;
+    int differ = 0;
+    for (int k = 0; k < a->count; k++) {
+        const sc_subpatch *x = &a->subpatches[k], *y = &b->subpatches[k];
+        differ += x->surface != y->surface || x->patch != y->patch ||
+                  x->first_vertex != y->first_vertex || x->vertex_count != y->vertex_count ||
+                  x->first_index != y->first_index || x->index_count != y->index_count;
+        for (int c = 0; c < 3; c++)
+            differ += x->lo[c] != y->lo[c] || x->hi[c] != y->hi[c];
+        for (int c = 0; c < 4; c++)
+            differ += x->local[c] != y->local[c] || x->domain[c] != y->domain[c];
+    }
+    for (int v = 0; v < a->nvertices; v++)
+        for (int c = 0; c < 3; c++)
+            differ += a->vertices[v].pos[c] != b->vertices[v].pos[c] ||
+                      (c < 2 && a->vertices[v].uv[c] != b->vertices[v].uv[c]);
+    for (int i = 0; i < a->nindices; i++)
+        differ += a->indices[i] != b->indices[i];
+    for (int s = 0; s < a->nsurfaces; s++)
+        differ += memcmp(&a->surfaces[s], &b->surfaces[s], sizeof a->surfaces[s]) != 0;
+    return differ;
+}
+
+/* Rebuilding one surface gives what a build of the changed scene gives
+ * when the scene's box stays: a body patch of the teapot lifted (counts
+ * kept: only its ranges change), then bent inwards until adaptive
+ * subdivision needs more pieces (the hulls after it move). */
+TEST(hulls_update_one_surface)
+{
+    sc_scene scene;
+    if (!load_teapot(&scene))
+        SKIP("teapot32.bpt not readable");
+    sc_hulls hulls, fresh;
+    sc_error err = {0};
+    CHECK_INT(sc_hulls_build(&scene, NULL, &hulls, &err), SC_OK);
+    double lo0[3], hi0[3], lo[3], hi[3];
+    sc_scene_bounds(&scene, lo0, hi0);
+    sc_surface *body = &scene.surfaces[4];
+    for (int k = 0; k < body->nu * body->nv; k++)
+        body->cp[4 * k + 2] += 0.2 * body->cp[4 * k + 3];
+    int moved = -1;
+    CHECK_INT(sc_hulls_update_surface(&hulls, &scene, 4, &moved, &err), SC_OK);
+    CHECK_INT(moved, 0);
+    sc_scene_bounds(&scene, lo, hi);
+    CHECK(!memcmp(lo, lo0, sizeof lo) && !memcmp(hi, hi0, sizeof hi));
+    CHECK_INT(sc_hulls_build(&scene, NULL, &fresh, &err), SC_OK);
+    CHECK_INT(hulls_differ(&hulls, &fresh), 0);
+    sc_hulls_free(&fresh);
+
+    int before = hulls.surfaces[4].subpatch_count;
+    for (int k = 5; k <= 6; k++)  /* the two inner control points of row 1 */
+        for (int c = 0; c < 2; c++)
+            body->cp[4 * k + c] *= 0.2;
+    CHECK_INT(sc_hulls_update_surface(&hulls, &scene, 4, &moved, &err), SC_OK);
+    CHECK_INT(moved, 1);
+    CHECK(hulls.surfaces[4].subpatch_count > before);
+    sc_scene_bounds(&scene, lo, hi);
+    CHECK(!memcmp(lo, lo0, sizeof lo) && !memcmp(hi, hi0, sizeof hi));
+    CHECK_INT(sc_hulls_build(&scene, NULL, &fresh, &err), SC_OK);
+    CHECK_INT(hulls_differ(&hulls, &fresh), 0);
+    sc_hulls_free(&fresh);
+
+    /* The tolerance stays the one the hulls were built with, though the
+     * scene's box grows: moved far up, the patch keeps its pieces, where a
+     * build of the grown scene, with a tolerance twice as large, cuts it
+     * into fewer. */
+    int bent = hulls.surfaces[4].subpatch_count;
+    for (int k = 0; k < body->nu * body->nv; k++)
+        body->cp[4 * k + 2] += 10 * body->cp[4 * k + 3];
+    CHECK_INT(sc_hulls_update_surface(&hulls, &scene, 4, &moved, &err), SC_OK);
+    CHECK_INT(hulls.surfaces[4].subpatch_count, bent);
+    CHECK_INT(sc_hulls_build(&scene, NULL, &fresh, &err), SC_OK);
+    CHECK(fresh.tolerance > 1.5 * hulls.tolerance);
+    CHECK(fresh.surfaces[4].subpatch_count < bent);
+    sc_hulls_free(&fresh);
+    CHECK_INT(sc_hulls_update_surface(&hulls, &scene, 32, &moved, &err), SC_FAIL);
     sc_hulls_free(&hulls);
     sc_scene_free(&scene);
 }

@@ -14,6 +14,7 @@
 #include <GL/glcorearb.h>
 
 #include "camera.h"
+#include "hulls.h"
 #include "image.h"
 #include "io.h"
 #include "refcast.h"
@@ -463,5 +464,117 @@ TEST(install_api_render_against_reference)
     CHECK_CONTAINS(err.message, "renderer handle names an object that was destroyed");
     CHECK_INT(sc_query_program_info(p1, &pinfo, &err), SC_FAIL);
     CHECK_INT(sc_query_frame_info(gpu, &info, &err), SC_OK);
+    sc_shutdown();
+}
+
+/* Vertices of the hulls of surface s of the teapot after `lift` was added
+ * to the z of its control points (the renderer's default hulls). */
+static int teapot_hull_vertices(int s, double lift)
+{
+    sc_scene scene;
+    sc_error err = {0};
+    if (sc_read_scene("teapot", &scene, &err) != SC_OK)
+        return -1;
+    sc_surface *surf = &scene.surfaces[s];
+    for (int k = 0; k < surf->nu * surf->nv; k++)
+        surf->cp[4 * k + 2] += lift * surf->cp[4 * k + 3];
+    sc_hulls hulls;
+    int n = -1;
+    if (sc_hulls_build(&scene, NULL, &hulls, &err) == SC_OK) {
+        n = hulls.surfaces[s].vertex_count;
+        sc_hulls_free(&hulls);
+    }
+    sc_scene_free(&scene);
+    return n;
+}
+
+/* sc_update_surface: a body patch of the teapot lifted by 0.2 through the
+ * public calls; the renderer made before draws what a renderer made after
+ * draws and what the reference sees, having sent that patch's data and hull
+ * vertices alone; bad descs and a change of variant key refused, changing
+ * nothing. */
+TEST(install_api_update_surface)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_renderer_id before, after;
+    CHECK_INT(sc_make_renderer(ctx, scene, NULL, &before, &err), SC_OK);
+    sc_renderer_info made;
+    CHECK_INT(sc_query_renderer_info(before, &made, &err), SC_OK);
+
+    sc_surface_info info;
+    CHECK_INT(sc_query_surface_info(scene, 4, &info, &err), SC_OK);
+    CHECK_INT(info.deg_u, 3);
+    CHECK_INT(info.deg_v, 3);
+    CHECK_INT(info.nu * info.nv, 16);
+    CHECK_INT(info.rational, 0);
+    double points[16 * 3], weights[16], lifted[16 * 3];
+    CHECK_INT(sc_query_surface_points(scene, 4, points, weights, 16, &err), SC_OK);
+    CHECK_NEAR(weights[7], 1, 0);
+    for (int k = 0; k < 16 * 3; k++)
+        lifted[k] = points[k] + (k % 3 == 2 ? 0.2 : 0);
+
+    /* Nothing to change: a NULL desc is the zero desc. */
+    CHECK_INT(sc_update_surface(scene, NULL, &err), SC_OK);
+    /* Refused, changing nothing. */
+    CHECK_INT(sc_update_surface(scene, &(sc_surface_desc){.surface = 4, .count = 12,
+                                                          .points = lifted}, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "sc_surface_desc.count is out of range: 12 (the surface has 4 x 4");
+    CHECK_INT(sc_update_surface(scene, &(sc_surface_desc){.surface = 32, .count = 16,
+                                                          .points = lifted}, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "surface is out of range: 32 (0 to 31)");
+    double bad_weights[16];
+    for (int k = 0; k < 16; k++)
+        bad_weights[k] = k == 3 ? -1 : 1;
+    CHECK_INT(sc_update_surface(scene, &(sc_surface_desc){.surface = 4, .count = 16,
+                                                          .weights = bad_weights}, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "sc_surface_desc.weights is out of range: weight 3 is -1");
+    bad_weights[3] = 2;  /* valid, but rational: a new key */
+    CHECK_INT(sc_update_surface(scene, &(sc_surface_desc){.surface = 4, .count = 16,
+                                                          .weights = bad_weights}, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "surface 4 would become rational");
+    double now[16 * 3];
+    CHECK_INT(sc_query_surface_points(scene, 4, now, NULL, 16, &err), SC_OK);
+    CHECK(!memcmp(now, points, sizeof now));
+
+    CHECK_INT(sc_update_surface(scene, &(sc_surface_desc){.surface = 4, .count = 16,
+                                                          .points = lifted}, &err), SC_OK);
+    CHECK_INT(sc_query_surface_points(scene, 4, now, NULL, 16, &err), SC_OK);
+    CHECK_NEAR(now[2], points[2] + 0.2, 1e-12);
+    sc_renderer_info updated;
+    CHECK_INT(sc_query_renderer_info(before, &updated, &err), SC_OK);
+    /* One bicubic patch: 16 points and a record of 4 texels of 16 bytes;
+     * a hull vertex is 13 four-byte values. */
+    int vertices = teapot_hull_vertices(4, 0.2);
+    CHECK(vertices > 0);
+    CHECK_INT(updated.uploaded_bytes, 16 * 16 + 4 * 16 + vertices * 13 * 4);
+    CHECK(updated.uploaded_bytes * 20 < made.uploaded_bytes);
+
+    CHECK_INT(sc_make_renderer(ctx, scene, NULL, &after, &err), SC_OK);
+    sc_camera_desc camera = {.width = 96, .height = 96};
+    sc_frame_id old_frame, new_frame, ref;
+    CHECK_INT(sc_render(before, &camera, &old_frame, &err), SC_OK);
+    CHECK_INT(sc_render(after, &camera, &new_frame, &err), SC_OK);
+    CHECK_INT(sc_render_reference(scene, &camera, NULL, &ref, &err), SC_OK);
+    sc_comparison cmp;
+    CHECK_INT(sc_compare_frames(new_frame, old_frame, &cmp, &err), SC_OK);
+    CHECK(cmp.reference_hits > 96 * 96 / 10);
+    CHECK_NEAR(cmp.fail_pct, 0, 0);
+    CHECK_INT(sc_compare_frames(ref, old_frame, &cmp, &err), SC_OK);
+    CHECK_NEAR(cmp.fail_pct, 0, 0);
+
+    /* Without renderers the surface may become rational. */
+    sc_destroy_renderer(before);
+    sc_destroy_renderer(after);
+    CHECK_INT(sc_update_surface(scene, &(sc_surface_desc){.surface = 4, .count = 16,
+                                                          .weights = bad_weights}, &err), SC_OK);
+    CHECK_INT(sc_query_surface_info(scene, 4, &info, &err), SC_OK);
+    CHECK_INT(info.rational, 1);
     sc_shutdown();
 }
