@@ -676,20 +676,22 @@ static int fragment_slots(const scg_program *prog, const program_use *use, scg_t
         }
     if (use->inputs[SCG_IN_T_LIMIT]) {
         scg_text_printf(&parts[TEXTURES],
-                        "// Distance along the unit ray to the nearest surface drawn so far.\n"
+                        "// Per tile of %d x %d pixels, the largest distance along the unit ray to "
+                        "the\n// nearest surfaces drawn so far.\n"
                         "layout(binding = %d) uniform sampler2D sc_nearest_t;\n",
-                        NEAREST_T_BINDING);
+                        SCG_NEAREST_TILE, SCG_NEAREST_TILE, NEAREST_T_BINDING);
         scg_text_append(&parts[GLOBALS],
                         "// Early ray termination: the ray parameter of the nearest surface so "
                         "far, in\n// units of sc_ray_dir.\nfloat sc_t_limit = 0.0;\n\n");
         /* The intersection refuses such a hull too; leaving at once also
          * skips loading the patch and the final evaluation where the
          * hardware branches per group of pixels. */
-        scg_text_append(&parts[PREPARE],
-                        "sc_t_limit = texelFetch(sc_nearest_t, ivec2(gl_FragCoord.xy), 0).r / "
+        scg_text_printf(&parts[PREPARE],
+                        "sc_t_limit = texelFetch(sc_nearest_t, ivec2(gl_FragCoord.xy) / %d, 0).r / "
                         "length(sc_ray_dir);\n"
                         "// The hull's front face (t = 1) lies behind the nearest surface so far.\n"
-                        "if (sc_t_limit < 1.0)\n    discard;\n");
+                        "if (sc_t_limit < 1.0)\n    discard;\n",
+                        SCG_NEAREST_TILE);
     }
     output_declarations(&parts[OUTPUTS], key->outputs);
     if (key->ert == SCG_ERT_CONSERVATIVE)

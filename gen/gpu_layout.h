@@ -111,14 +111,20 @@ typedef enum scg_input_slot {
     /* int, flat: record index (see SCG_TEX_RECORDS). */
     SCG_IN_RECORD,
     /* float: early ray termination — the ray parameter t (same units as
-     * SCG_IN_RAY_DIR) of the nearest surface already drawn on this pixel, or
-     * a huge value (3.0e38) when there is none. Read only by ert1/ert2 keys.
-     * Not a vertex-stage output: the fragment program's main() derives it
-     * from the sc_nearest_t texture (distance along the unit ray at
-     * gl_FragCoord, divided by length(sc_ray_dir)) before the intersection. */
+     * SCG_IN_RAY_DIR) beyond which this pixel holds a surface already
+     * drawn, or a huge value (3.0e38) when there is none. Read only by
+     * ert1/ert2 keys. Not a vertex-stage output: the fragment program's
+     * main() derives it from the sc_nearest_t texture before the
+     * intersection. That texture has one texel per SCG_NEAREST_TILE² pixels
+     * (tile (x / T, y / T) of gl_FragCoord): the largest distance along the
+     * unit ray of the nearest hits of the tile's pixels, so it never lies in
+     * front of any of them. */
     SCG_IN_T_LIMIT,
     SCG_INPUT_COUNT
 } scg_input_slot;
+
+/* Pixels per side of a tile of the early-termination texture sc_nearest_t. */
+enum { SCG_NEAREST_TILE = 8 };
 
 /* ---- uniforms (default block; location = enum value) ---- */
 typedef enum scg_uniform_slot {

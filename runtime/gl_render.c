@@ -103,7 +103,7 @@ struct sc_renderer {
     draw_run *runs;
     double *group_seen;      /* per group, for the hybrid buckets */
     float *uvt;              /* read back: the uvt attachment */
-    float *nearest;          /* its distances (.z), for sc_nearest_t */
+    float *nearest;          /* its largest distance per tile: sc_nearest_t */
     float *tile_far;         /* its largest value per tile */
     double raster_origin[3]; /* what hull vertices are rasterised relative to */
     float *cosine;           /* per pixel: cosine of its ray to the view direction */
@@ -639,17 +639,19 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
     }
 }
 
-/* Between batches in the manual modes the uvt attachment is read back and
- * its distances (.z, along the unit ray) go to sc_nearest_t, which the
+/* Between batches in the manual modes the uvt attachment is read back.
+ * Its distances (.z, along the unit ray) go, as their largest value over
+ * each tile of SCG_NEAREST_TILE² pixels, to sc_nearest_t, which the
  * ert1/ert2 programs read instead of the attachment they write: GL leaves a
  * fragment's read of a texel that fragments of the same draw write
- * undefined, and hulls of one batch overlap on screen. On the CPU they
+ * undefined, and hulls of one batch overlap on screen. A tile's largest
+ * distance never lies in front of the nearest hit of any of its pixels, and
+ * the upload is a 64th of the image's (on llvmpipe the frame time is the
+ * same as with every pixel's distance: the read-back's stall dominates). They
  * also become depth along the view direction (which, unlike the distance,
- * a box's corners bound), kept as its largest value over tiles of
- * NEAREST_TILE² pixels for culling whole hulls. On llvmpipe reading all
- * four channels is a plain copy and uploading one channel a quarter of
- * that; a copy on the GPU by a compute program cost several times more. */
-enum { NEAREST_TILE = 8 };
+ * a box's corners bound), kept as its largest value per tile for culling
+ * whole hulls. */
+enum { NEAREST_TILE = SCG_NEAREST_TILE };
 
 static void refresh_nearest(sc_renderer *r)
 {
@@ -658,14 +660,14 @@ static void refresh_nearest(sc_renderer *r)
     int w = r->target.width, h = r->target.height;
     int tw = (w + NEAREST_TILE - 1) / NEAREST_TILE, th = (h + NEAREST_TILE - 1) / NEAREST_TILE;
     r->uvt = sc_realloc(r->uvt, 4 * (size_t)w * (size_t)h, sizeof(float));
-    r->nearest = sc_realloc(r->nearest, (size_t)w * (size_t)h, sizeof(float));
+    r->nearest = sc_realloc(r->nearest, (size_t)tw * (size_t)th, sizeof(float));
     r->tile_far = sc_realloc(r->tile_far, (size_t)tw * (size_t)th, sizeof(float));
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
     /* Rows bottom-up, as the window, and so back into sc_nearest_t. */
     gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
                         (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->uvt);
     for (int t = 0; t < tw * th; t++)
-        r->tile_far[t] = 0;
+        r->tile_far[t] = r->nearest[t] = 0;
     /* Depth = distance × the cosine between the pixel's ray and the view
      * direction; the pixel's ray is (sx, sy, 1) in the camera's frame. The
      * cosines depend only on the size and the field of view. */
@@ -685,18 +687,19 @@ static void refresh_nearest(sc_renderer *r)
     }
     for (int y = 0; y < h; y++) {
         float *row = r->tile_far + (size_t)(y / NEAREST_TILE) * (size_t)tw;
+        float *row_t = r->nearest + (size_t)(y / NEAREST_TILE) * (size_t)tw;
         const float *uvt = r->uvt + 4 * (size_t)y * (size_t)w;
-        float *t = r->nearest + (size_t)y * (size_t)w;
         const float *cosine = r->cosine + (size_t)y * (size_t)w;
         for (int x = 0; x < w; x++) {
-            t[x] = uvt[4 * x + 2];
-            float depth = t[x] * cosine[x];
+            float t = uvt[4 * x + 2], depth = t * cosine[x];
             if (depth > row[x / NEAREST_TILE])
                 row[x / NEAREST_TILE] = depth;
+            if (t > row_t[x / NEAREST_TILE])
+                row_t[x / NEAREST_TILE] = t;
         }
     }
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl->TextureSubImage2D(r->nearest_texture, 0, 0, 0, w, h, GL_RED, GL_FLOAT, r->nearest);
+    gl->TextureSubImage2D(r->nearest_texture, 0, 0, 0, tw, th, GL_RED, GL_FLOAT, r->nearest);
     r->readbacks++;
 }
 
@@ -748,7 +751,9 @@ static int make_nearest_texture(sc_renderer *r, sc_error *err)
     if (r->nearest_texture)
         gl->DeleteTextures(1, &r->nearest_texture);
     gl->CreateTextures(GL_TEXTURE_2D, 1, &r->nearest_texture);
-    gl->TextureStorage2D(r->nearest_texture, 1, GL_R32F, r->target.width, r->target.height);
+    int tw = (r->target.width + NEAREST_TILE - 1) / NEAREST_TILE;
+    int th = (r->target.height + NEAREST_TILE - 1) / NEAREST_TILE;
+    gl->TextureStorage2D(r->nearest_texture, 1, GL_R32F, tw, th);
     gl->TextureParameteri(r->nearest_texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TextureParameteri(r->nearest_texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return sc_gl_check(gl, "creating the nearest distances", err);
@@ -990,14 +995,17 @@ int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err)
         return sc_fail(err, NULL, 0, "no nearest distances: nothing drawn with manual early ray "
                                      "termination yet");
     int w = r->target.width, h = r->target.height;
-    float *rows = sc_alloc((size_t)w * (size_t)h, sizeof(float));
+    int tw = (w + NEAREST_TILE - 1) / NEAREST_TILE, th = (h + NEAREST_TILE - 1) / NEAREST_TILE;
+    float *tiles = sc_alloc((size_t)tw * (size_t)th, sizeof(float));
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl->GetTextureImage(r->nearest_texture, 0, GL_RED, GL_FLOAT,
-                        (GLsizei)((size_t)w * (size_t)h * sizeof(float)), rows);
+                        (GLsizei)((size_t)tw * (size_t)th * sizeof(float)), tiles);
+    /* Tiles count rows from the bottom, as the window does. */
     for (int y = 0; y < h; y++)
-        memcpy(t + (size_t)y * (size_t)w, rows + (size_t)(h - 1 - y) * (size_t)w,
-               (size_t)w * sizeof(float));
-    free(rows);
+        for (int x = 0; x < w; x++)
+            t[(size_t)y * (size_t)w + (size_t)x] =
+                tiles[(size_t)((h - 1 - y) / NEAREST_TILE) * (size_t)tw + (size_t)(x / NEAREST_TILE)];
+    free(tiles);
     return sc_gl_check(gl, "reading the nearest distances", err);
 }
 

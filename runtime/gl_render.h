@@ -131,8 +131,10 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err);
 
 /* The nearest distances so far as the programs of the last frame's last
  * batch read them (sc_nearest_t, manual modes): per pixel, rows top-down,
- * the distance along the unit ray of the nearest hit of the batches before
- * that batch, 3e38 where there was none. w × h floats. */
+ * the largest over the pixel's tile (SCG_NEAREST_TILE², gpu_layout.h) of
+ * the distances along the unit ray of the nearest hits of the batches
+ * before that batch, 3e38 where a pixel of the tile had none. w × h
+ * floats. */
 int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err);
 
 /* After surface s of the scene changed shape (same degrees, counts and
