@@ -9,6 +9,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sc_base.h"
+
 extern int test_failed_flag;
 /* Folder of the shared test data (../shared/data), and of the project root;
  * set from the environment or defaulted by main.c. */
@@ -98,5 +100,13 @@ const char *test_data(const char *rel);
 const char *test_write_tmp(const char *name, const char *text);
 /* Deterministic random numbers in [0, 1). */
 double test_rand(unsigned long long *state);
+
+/* Warnings (and errors) gathered through the library's logger:
+ * sc_set_logger(test_gather_warnings, &w) with a zeroed test_warnings. */
+typedef struct test_warnings {
+    int count;
+    char text[8192];    /* the messages, one per line (cut when full) */
+} test_warnings;
+void test_gather_warnings(sc_log_level level, const char *message, void *user);
 
 #endif

@@ -187,21 +187,6 @@ TEST(key_scene_keys)
     sc_scene_free(&scene);
 }
 
-typedef struct warnings {
-    int count;
-    char text[2048];
-} warnings;
-
-static void gather(sc_log_level level, const char *message, void *user)
-{
-    warnings *w = user;
-    if (level < SC_LOG_WARN)
-        return;
-    w->count++;
-    size_t used = strlen(w->text);
-    snprintf(w->text + used, sizeof w->text - used, "%s\n", message);
-}
-
 /* Surfaces the GPU programs cannot draw: degree 17 in one direction (the
  * scene model takes any degree), and a trim curve of degree 17 in a scene
  * built in code (readers drop such loops). By default the scene's keys
@@ -245,9 +230,9 @@ TEST(key_scene_keys_undrawable_surfaces)
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
     opts.skip_undrawable = 1;
-    warnings w;
+    test_warnings w;
     memset(&w, 0, sizeof w);
-    sc_set_logger(gather, &w);
+    sc_set_logger(test_gather_warnings, &w);
     int status = sc_scene_keys(&scene, &opts, &keys, &count, &err);
     sc_set_logger(NULL, NULL);
     CHECK_INT(status, SC_OK);

@@ -15,25 +15,10 @@
 #include "nurbs.h"
 #include "trim.h"
 
-typedef struct log_capture {
-    int count;
-    char text[8192];
-} log_capture;
-
-static void capture(sc_log_level level, const char *message, void *user)
-{
-    log_capture *cap = user;
-    if (level < SC_LOG_WARN)
-        return;
-    cap->count++;
-    size_t used = strlen(cap->text);
-    snprintf(cap->text + used, sizeof cap->text - used, "%s\n", message);
-}
-
-static void validate(sc_scene *scene, log_capture *cap)
+static void validate(sc_scene *scene, test_warnings *cap)
 {
     memset(cap, 0, sizeof *cap);
-    sc_set_logger(capture, cap);
+    sc_set_logger(test_gather_warnings, cap);
     sc_scene_validate_loops(scene);
     sc_set_logger(NULL, NULL);
 }
@@ -110,7 +95,7 @@ TEST(loops_tiny_gap_closed_silently)
     sc_surface *s = make_scene(&scene);
     /* 2e-11 on a domain of size 2: a gap of 1e-11 of the domain. */
     polygon_loop(s, 0, square, 4, 1, 2e-11);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(cap.count, 0);
@@ -136,7 +121,7 @@ TEST(loops_small_gap_repaired_with_a_segment)
     /* The hole, loop 1: a gap of 1e-5 of the domain after its curve 2. */
     const double hole[4][2] = {{0.8, 0.4}, {1.2, 0.4}, {1.2, 0.6}, {0.8, 0.6}};
     polygon_loop(s, 1, hole, 4, 2, 2e-5);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(cap.count, 1);
@@ -166,7 +151,7 @@ TEST(loops_gap_between_last_and_first_curve)
     sc_scene scene;
     sc_surface *s = make_scene(&scene);
     polygon_loop(s, 0, square, 4, 3, 1e-4);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(scene.repaired_gaps, 1);
@@ -191,7 +176,7 @@ TEST(loops_repair_at_sharp_corner_kept)
     line(&l->curves[0], 0.7, 0.2, 1.0, 0.8);
     line(&l->curves[1], 1.0 - 2e-5, 0.8 - 1e-5, 1.3, 0.2);
     line(&l->curves[2], 1.3, 0.2, 0.7, 0.2);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 0);
     CHECK_INT(scene.repaired_gaps, 1);
@@ -220,7 +205,7 @@ TEST(loops_large_gap_dropped)
     polygon_loop(s, 0, square, 4, -1, 0);
     const double hole[4][2] = {{0.8, 0.4}, {1.2, 0.4}, {1.2, 0.6}, {0.8, 0.6}};
     polygon_loop(s, 1, hole, 4, 0, 0.2); /* 0.1 of the domain */
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(scene.dropped_loops, 1);
@@ -241,7 +226,7 @@ TEST(loops_dropped_outer_loop_keeps_holes)
     polygon_loop(s, 0, square, 4, 2, 0.2);
     const double hole[4][2] = {{0.8, 0.4}, {1.2, 0.4}, {1.2, 0.6}, {0.8, 0.6}};
     polygon_loop(s, 1, hole, 4, -1, 0);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(scene.dropped_loops, 1);
@@ -258,7 +243,7 @@ TEST(loops_bowtie_dropped)
     /* Sides 0 and 2 cross at (1, 0.5). */
     const double bowtie[4][2] = {{0.5, 0.25}, {1.5, 0.75}, {1.5, 0.25}, {0.5, 0.75}};
     polygon_loop(s, 0, bowtie, 4, -1, 0);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_INT(scene.surfaces[1].nloops, 0);
@@ -286,7 +271,7 @@ TEST(loops_figure_eight_curve_dropped)
         c->cp[3 * i + 1] = xy[i][1];
         c->cp[3 * i + 2] = 1;
     }
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_INT(scene.surfaces[1].nloops, 0);
@@ -304,7 +289,7 @@ TEST(loops_crossing_at_shared_corner_dropped_touching_kept)
     sc_scene scene;
     sc_surface *s = make_scene(&scene);
     polygon_loop(s, 0, eight, 6, -1, 0);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_CONTAINS(cap.text, "crosses itself");
@@ -342,7 +327,7 @@ TEST(loops_valid_square_and_circle_untouched)
     }
     sc_surface before;
     sc_surface_copy(&before, s);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(cap.count, 0);
@@ -378,7 +363,7 @@ TEST(loops_thousands_of_pieces)
     sc_scene scene;
     sc_surface *s = make_scene(&scene);
     star_loop(s, 20000);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 0);
     CHECK_INT(cap.count, 0);
@@ -405,7 +390,7 @@ TEST(loops_invalid_curve_dropped)
     sc_surface *s = make_scene(&scene);
     polygon_loop(s, 0, square, 4, -1, 0);
     s->loops[0].curves[2].cp[2] = -1; /* a negative weight */
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_CONTAINS(cap.text, "curve 2 is invalid");
@@ -439,7 +424,7 @@ TEST(loops_curve_above_trim_degree_dropped)
     polygon_loop(s, 0, square, 4, -1, 0);
     closed_bezier(&add_loop(s, 1, 1)->curves[0], SC_TRIM_MAX_DEGREE + 1, 0.2);
     closed_bezier(&add_loop(s, 1, 1)->curves[0], SC_TRIM_MAX_DEGREE, 0.1);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     s = &scene.surfaces[1];
     CHECK_INT(scene.dropped_loops, 1);
@@ -477,7 +462,7 @@ static int same_loops(const sc_surface *x, const sc_surface *y)
 /* Validates the scene a second time: no warning, no count changes, every
  * loop as the first validation left it. Returns the number of surfaces
  * whose loops changed. */
-static int revalidate_changes(sc_scene *scene, log_capture *cap)
+static int revalidate_changes(sc_scene *scene, test_warnings *cap)
 {
     sc_surface *before = sc_alloc((size_t)scene->nsurfaces, sizeof(sc_surface));
     for (int i = 0; i < scene->nsurfaces; i++)
@@ -519,7 +504,7 @@ TEST(loops_validate_twice_sharp_corner)
         {(0.9 + 6e-11) * 0.61, 0.4 * 0.61, 0.61, 1.0 * 0.8, 0.3 * 0.8, 0.8, 1.1, 0.4, 1}};
     for (int c = 0; c < 2; c++)
         quadratic(&hole->curves[c], arcs[c]);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 0);
     CHECK_INT(scene.repaired_gaps, 1);
@@ -547,7 +532,7 @@ TEST(loops_corner_lobe_without_gap_kept)
     line(&l->curves[1], 1.0, 0.8, 1.0 - 2e-5, 0.8 - 1e-5);
     line(&l->curves[2], 1.0 - 2e-5, 0.8 - 1e-5, 1.3, 0.2);
     line(&l->curves[3], 1.3, 0.2, 0.7, 0.2);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(cap.count, 0);
     CHECK_INT(scene.dropped_loops, 0);
@@ -593,7 +578,7 @@ TEST(loops_tiny_figure_eight_dropped)
     const double bowtie[4][2] = {
         {1, 0.5}, {1 + 2e-4, 0.5 + 1e-4}, {1 + 2e-4, 0.5}, {1, 0.5 + 1e-4}};
     polygon_loop(s, 1, bowtie, 4, -1, 0);
-    log_capture cap;
+    test_warnings cap;
     validate(&scene, &cap);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_CONTAINS(cap.text, "trim loop 1 dropped: it crosses itself");
@@ -603,10 +588,10 @@ TEST(loops_tiny_figure_eight_dropped)
 
 static const char *bearing_path = "/usr/share/opencascade/data/iges/bearing.iges";
 
-static int read_quietly(const char *path, sc_scene *scene, log_capture *cap, sc_error *err)
+static int read_quietly(const char *path, sc_scene *scene, test_warnings *cap, sc_error *err)
 {
     memset(cap, 0, sizeof *cap);
-    sc_set_logger(capture, cap);
+    sc_set_logger(test_gather_warnings, cap);
     int status = sc_read_scene(path, scene, err);
     sc_set_logger(NULL, NULL);
     return status;
@@ -620,7 +605,7 @@ TEST(loops_validate_twice_bearing)
     fclose(f);
     sc_scene scene;
     sc_error err;
-    log_capture cap;
+    test_warnings cap;
     sc_scene_init(&scene);
     CHECK_INT(read_quietly(bearing_path, &scene, &cap, &err), SC_OK);
     /* Its gaps are repaired (66 of them when this was written); three of
@@ -649,7 +634,7 @@ TEST(loops_bearing_obj_round_trip_keeps_loops)
     fclose(f);
     sc_scene first, second;
     sc_error err;
-    log_capture cap;
+    test_warnings cap;
     sc_scene_init(&first);
     sc_scene_init(&second);
     CHECK_INT(read_quietly(bearing_path, &first, &cap, &err), SC_OK);

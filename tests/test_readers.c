@@ -215,27 +215,11 @@ TEST(readers_obj_surf_range_restricts)
     sc_scene_free(&scene);
 }
 
-/* Warnings of the readers and of loop validation, gathered through the
- * logger. */
-typedef struct warnings {
-    int count;
-    char text[4096];
-} warnings;
-
-static void gather(sc_log_level level, const char *message, void *user)
-{
-    warnings *w = user;
-    if (level < SC_LOG_WARN)
-        return;
-    w->count++;
-    size_t used = strlen(w->text);
-    snprintf(w->text + used, sizeof w->text - used, "%s\n", message);
-}
-
-static int read_text_warnings(const char *text, sc_scene *scene, sc_error *err, warnings *w)
+static int read_text_warnings(const char *text, sc_scene *scene, sc_error *err,
+                              test_warnings *w)
 {
     memset(w, 0, sizeof *w);
-    sc_set_logger(gather, w);
+    sc_set_logger(test_gather_warnings, w);
     int status = read_text(text, scene, err);
     sc_set_logger(NULL, NULL);
     return status;
@@ -251,7 +235,7 @@ TEST(readers_obj_surf_range_wider_is_cut_with_warning)
                        "parm u 0 2\nparm v 0 1\nend\n";
     sc_scene scene;
     sc_error err;
-    warnings w;
+    test_warnings w;
     CHECK_INT(read_text_warnings(text, &scene, &err, &w), SC_OK);
     CHECK_INT(w.count, 1);
     CHECK_CONTAINS(w.text, "inline.obj:7: surf u range [-1, 3] is wider than the knots' range "
@@ -295,7 +279,7 @@ TEST(readers_obj_trim_degree_above_limit_dropped)
              "trim 0 1 1\nhole 0 1 2\nend\n");
     sc_scene scene;
     sc_error err;
-    warnings w;
+    test_warnings w;
     CHECK_INT(read_text_warnings(text, &scene, &err, &w), SC_OK);
     CHECK_INT(scene.dropped_loops, 1);
     CHECK_INT(w.count, 1);

@@ -95,3 +95,13 @@ double test_rand(unsigned long long *state)
     z ^= z >> 31;
     return (double)(z >> 11) * (1.0 / 9007199254740992.0);
 }
+
+void test_gather_warnings(sc_log_level level, const char *message, void *user)
+{
+    test_warnings *w = user;
+    if (level < SC_LOG_WARN)
+        return;
+    w->count++;
+    size_t used = strlen(w->text);
+    snprintf(w->text + used, sizeof w->text - used, "%s\n", message);
+}
