@@ -267,10 +267,13 @@ TEST(gl_debug_output)
 
 /* ---- the render path ---- */
 
-/* Renders `path` at w×h from its default view with default settings and
- * compares with the reference (cached in the run's temporary folder). */
-static int render_against_reference(sc_gl_backend backend, const char *path, int w, int h,
-                                    sc_accuracy *acc, sc_render_stats *stats, const char **why)
+/* Renders `path` with default settings from `view` (NULL: its default
+ * view at w×h) and compares with the reference (cached in the run's
+ * temporary folder); *key0, when asked, is the key of surface 0. */
+static int render_view_against_reference(sc_gl_backend backend, const char *path,
+                                         const sc_camera *view, int w, int h, sc_accuracy *acc,
+                                         sc_render_stats *stats, scg_key *key0,
+                                         const char **why)
 {
     sc_gl_context *ctx = test_context(backend, why);
     if (!ctx)
@@ -281,14 +284,20 @@ static int render_against_reference(sc_gl_backend backend, const char *path, int
     if (sc_read_scene(path, &scene, &err) != SC_OK)
         return -1;
     sc_camera cam;
-    sc_camera_default(&scene, &cam);
-    cam.width = w;
-    cam.height = h;
+    if (view)
+        cam = *view;
+    else {
+        sc_camera_default(&scene, &cam);
+        cam.width = w;
+        cam.height = h;
+    }
     sc_aov ref, aov;
     int ok = 0;
     if (sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err) == SC_OK) {
         sc_renderer *r;
         if (sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err) == SC_OK) {
+            if (key0 && scene.nsurfaces)
+                *key0 = *sc_renderer_surface_key(r, 0);
             if (sc_renderer_draw(r, &cam, &err) == SC_OK &&
                 sc_renderer_read(r, NULL, &aov, &err) == SC_OK) {
                 ok = sc_accuracy_compare(&ref, &aov, acc, &err) == SC_OK;
@@ -303,6 +312,12 @@ static int render_against_reference(sc_gl_backend backend, const char *path, int
     if (!ok)
         fprintf(stderr, "  %s: %s\n", path, err.message);
     return ok;
+}
+
+static int render_against_reference(sc_gl_backend backend, const char *path, int w, int h,
+                                    sc_accuracy *acc, sc_render_stats *stats, const char **why)
+{
+    return render_view_against_reference(backend, path, NULL, w, h, acc, stats, NULL, why);
 }
 
 /* The accuracy targets of the GL runtime issue, on the tea set at 256×256:
@@ -588,24 +603,16 @@ TEST(gl_render_degree12_generic)
     sc_scene_free(&scene);
     CHECK_INT(sc_read_scene(path, &scene, &err), SC_OK);
     CHECK_INT(scene.surfaces[0].deg_u, 12);
+    sc_scene_free(&scene);
     sc_camera cam = {.eye = {0.5, -0.5, 1.1}, .target = {0.5, 0.5, 0}, .fovy_deg = 45,
                      .width = 128, .height = 128};
-    sc_aov ref, aov;
-    CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
-    sc_renderer *r;
-    CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err), SC_OK);
-    int generic = sc_renderer_surface_key(r, 0)->eval == SCG_EVAL_LOOP;
-    int ok = sc_renderer_draw(r, &cam, &err) == SC_OK &&
-             sc_renderer_read(r, NULL, &aov, &err) == SC_OK;
-    sc_renderer_destroy(r);
-    sc_scene_free(&scene);
     sc_accuracy acc;
-    int compared = ok && sc_accuracy_compare(&ref, &aov, &acc, &err) == SC_OK;
-    sc_aov_free(&ref);
-    if (ok)
-        sc_aov_free(&aov);
-    CHECK(generic);
-    CHECK(compared);
+    sc_render_stats stats;
+    scg_key key;
+    CHECK_INT(render_view_against_reference(SC_GL_BACKEND_DEFAULT, path, &cam, 0, 0, &acc,
+                                            &stats, &key, &why),
+              1);
+    CHECK(key.eval == SCG_EVAL_LOOP);
     CHECK(acc.ref_hits > 128 * 128 / 4);
     CHECK(acc.fail_pct <= 0.1);
     CHECK(acc.pos_median_px < 0.1);
@@ -629,26 +636,17 @@ TEST(gl_render_torus_degree12)
     CHECK_INT(scene.nsurfaces, 1);
     CHECK_INT(scene.surfaces[0].deg_u, 12);
     CHECK_INT(scene.surfaces[0].deg_v, 12);
+    sc_scene_free(&scene);
     sc_camera cam = {.eye = {383, -89, -390}, .target = {5, 342, 303}, .fovy_deg = 30,
                      .width = 96, .height = 96};
-    sc_aov ref, aov;
-    CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
-    sc_renderer *r;
-    CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err), SC_OK);
-    const scg_key *key = sc_renderer_surface_key(r, 0);
-    int generic = key->eval == SCG_EVAL_LOOP, trimmed = key->trim != SCG_TRIM_NONE;
-    int ok = sc_renderer_draw(r, &cam, &err) == SC_OK &&
-             sc_renderer_read(r, NULL, &aov, &err) == SC_OK;
-    sc_renderer_destroy(r);
-    sc_scene_free(&scene);
     sc_accuracy acc;
-    int compared = ok && sc_accuracy_compare(&ref, &aov, &acc, &err) == SC_OK;
-    sc_aov_free(&ref);
-    if (ok)
-        sc_aov_free(&aov);
-    CHECK(generic);
-    CHECK(trimmed);
-    CHECK(compared);
+    sc_render_stats stats;
+    scg_key key;
+    CHECK_INT(render_view_against_reference(SC_GL_BACKEND_DEFAULT, path, &cam, 0, 0, &acc,
+                                            &stats, &key, &why),
+              1);
+    CHECK(key.eval == SCG_EVAL_LOOP);
+    CHECK(key.trim != SCG_TRIM_NONE);
     CHECK(acc.ref_hits > 96 * 96 / 4);
     CHECK(acc.fail_pct <= 0.1);
     CHECK(acc.pos_median_px < 0.1);
