@@ -441,6 +441,28 @@ TEST(emit_gen_scene_refuses_undrawable_surface)
     CHECK(access(manifest, F_OK) != 0);
 }
 
+/* `make shaders` at build time: every example scene's keys generate and
+ * validate (the scenes of examples/scenes, as the Makefile lists them). */
+TEST(emit_gen_every_example_scene)
+{
+    char cmd[2048], *out = NULL, *err_text = NULL;
+    snprintf(cmd, sizeof cmd,
+             "cd %s && for s in examples/scenes/*.obj examples/scenes/*.bpt; do "
+             "%s gen --scene $s -o %s/gen/all/$(basename $s) > /dev/null || echo \"FAILED $s\"; "
+             "echo \"done $s\"; done",
+             test_root_dir, test_cli, test_tmpdir());
+    CHECK_INT(test_run(cmd, &out, &err_text), 0);
+    int scenes = 0;
+    for (const char *p = out; (p = strstr(p, "done ")) != NULL; p++)
+        scenes++;
+    CHECK(scenes >= 15);
+    CHECK(strstr(out, "FAILED") == NULL);
+    if (strstr(out, "FAILED"))
+        fprintf(stderr, "%s%s", out, err_text ? err_text : "");
+    free(out);
+    free(err_text);
+}
+
 TEST(emit_gen_scene_keys)
 {
     char cmd[1024], *out = NULL;

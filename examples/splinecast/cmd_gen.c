@@ -27,7 +27,8 @@ static const char usage[] =
     "                       per key and stage)\n"
     "stdout: one line `FILE BYTES` per file written, then `keys N files M`.\n"
     "A program glslang rejects fails with the key, glslang's message and the\n"
-    "offending GLSL line on stderr, and nothing is written (exit 1).\n"
+    "offending GLSL line on stderr, and nothing is written (exit 1). Files of\n"
+    "earlier runs in DIR are left alone: manifest.tsv lists this run's.\n"
     "  --dump-ir          first print each key's IR listing after the build and\n"
     "                     after every optimisation pass that changed it\n"
     "\n";
