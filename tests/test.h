@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "sc_base.h"
 
@@ -88,14 +89,27 @@ extern const char *test_cli;
     } while (0)
 extern int test_skipped_flag;
 
+/* Skips the running test when a shared model it needs is not there. */
+#define REQUIRE_DATA(rel)                                                      \
+    do {                                                                       \
+        if (access(test_data(rel), R_OK) != 0)                                 \
+            SKIP("%s: not found (the shared models, SC_DATA)", test_data(rel)); \
+    } while (0)
+
 /* Helpers (tests/util.c). */
 /* Runs a shell command, captures stdout and stderr (each malloc'd, may be
  * NULL pointers to ignore) and returns the exit status (or -1). */
 int test_run(const char *cmd, char **out, char **err);
 /* A fresh temporary directory for this test run (same for all tests). */
 const char *test_tmpdir(void);
-/* "data_dir/rel" into a static rotating buffer. */
+/* "data_dir/rel" into a static rotating buffer: the shared models
+ * (SC_DATA, default ../shared/data), which a checkout need not have. */
 const char *test_data(const char *rel);
+/* "root_dir/rel": a file of this repository (static rotating buffer). */
+const char *test_root(const char *rel);
+/* The teapot's 32 patches, shipped in the repository (the same bytes as the
+ * tea set's teapot32.bpt). */
+#define TEST_TEAPOT32 test_root("examples/scenes/teapot32.bpt")
 /* Writes text to tmpdir/name and returns the path (static rotating buffer). */
 const char *test_write_tmp(const char *name, const char *text);
 /* Deterministic random numbers in [0, 1). */

@@ -629,6 +629,7 @@ TEST(gl_render_torus_degree12)
     sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
+    REQUIRE_DATA("iges/OCC26138_Torus.igs");
     const char *path = test_data("iges/OCC26138_Torus.igs");
     sc_scene scene;
     sc_error err = {0};

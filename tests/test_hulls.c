@@ -93,7 +93,7 @@ static int load_teapot(sc_scene *scene)
 {
     sc_error err = {0};
     sc_scene_init(scene);
-    if (sc_read_scene(test_data("teaset/teapot32.bpt"), scene, &err) != SC_OK) {
+    if (sc_read_scene(TEST_TEAPOT32, scene, &err) != SC_OK) {
         fprintf(stderr, "  %s\n", err.message);
         return 0;
     }
@@ -126,8 +126,9 @@ TEST(hulls_parse)
 TEST(hulls_uniform_teapot)
 {
     sc_scene scene;
-    if (!load_teapot(&scene))
-        SKIP("teapot32.bpt not readable");
+    CHECK(load_teapot(&scene));
+    if (test_failed_flag)
+        return;
     sc_hulls hulls;
     sc_error err = {0};
     sc_hull_desc desc = {.mode = SC_HULL_UNIFORM, .divisions = 3};
@@ -171,8 +172,9 @@ TEST(hulls_uniform_teapot)
 TEST(hulls_adaptive_flatness)
 {
     sc_scene scene;
-    if (!load_teapot(&scene))
-        SKIP("teapot32.bpt not readable");
+    CHECK(load_teapot(&scene));
+    if (test_failed_flag)
+        return;
     double diag = scene_diag(&scene);
     int counts[2];
     double tols[2] = {0.01, 0.002};
@@ -330,8 +332,9 @@ static int hulls_differ(const sc_hulls *a, const sc_hulls *b)
 TEST(hulls_update_one_surface)
 {
     sc_scene scene;
-    if (!load_teapot(&scene))
-        SKIP("teapot32.bpt not readable");
+    CHECK(load_teapot(&scene));
+    if (test_failed_flag)
+        return;
     sc_hulls hulls, fresh;
     sc_error err = {0};
     CHECK_INT(sc_hulls_build(&scene, NULL, &hulls, &err), SC_OK);

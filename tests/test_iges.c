@@ -162,6 +162,7 @@ typedef struct file_fact {
 
 TEST(iges_counts_shared_files)
 {
+    REQUIRE_DATA("iges");
     static const file_fact facts[] = {
         {"iges/bug24012_face.igs", 1}, {"iges/OCC131-2.igs", 3},
         {"iges/OCC26138_Torus.igs", 1}, {"iges/PRO20359-L1.igs", 1},
@@ -249,6 +250,7 @@ TEST(iges_counts_occt_files)
 
 TEST(iges_bug24012_face)
 {
+    REQUIRE_DATA("iges/bug24012_face.igs");
     sc_scene s;
     sc_error err;
     CHECK_INT(read_path(test_data("iges/bug24012_face.igs"), &s, &err), SC_OK);
@@ -279,6 +281,7 @@ TEST(iges_bug24012_face)
 
 TEST(iges_torus_high_degree_across_seam)
 {
+    REQUIRE_DATA("iges/OCC26138_Torus.igs");
     sc_scene s;
     sc_error err;
     CHECK_INT(read_path(test_data("iges/OCC26138_Torus.igs"), &s, &err), SC_OK);
@@ -302,6 +305,7 @@ TEST(iges_torus_high_degree_across_seam)
 
 TEST(iges_brep_faces_untrimmed_and_coloured)
 {
+    REQUIRE_DATA("iges/occ22470.igs");
     sc_scene s;
     sc_error err;
     CHECK_INT(read_path(test_data("iges/occ22470.igs"), &s, &err), SC_OK);
@@ -324,6 +328,7 @@ TEST(iges_brep_faces_untrimmed_and_coloured)
 
 TEST(iges_teapot_leniency)
 {
+    REQUIRE_DATA("iges/gpucast_teapot.igs");
     sc_scene s, bpt;
     sc_error err;
     CHECK_INT(read_path(test_data("iges/gpucast_teapot.igs"), &s, &err), SC_OK);
@@ -334,7 +339,7 @@ TEST(iges_teapot_leniency)
         CHECK_INT(s.surfaces[i].nloops, 0);
     }
     /* The same teapot as the .bpt file, read by another reader. */
-    CHECK_INT(read_path(test_data("teaset/teapot32.bpt"), &bpt, &err), SC_OK);
+    CHECK_INT(read_path(TEST_TEAPOT32, &bpt, &err), SC_OK);
     double lo[3], hi[3], blo[3], bhi[3];
     sc_scene_bounds(&s, lo, hi);
     sc_scene_bounds(&bpt, blo, bhi);
@@ -348,6 +353,7 @@ TEST(iges_teapot_leniency)
 
 TEST(iges_disc_without_line_breaks)
 {
+    REQUIRE_DATA("iges/Disc.igs");
     sc_scene s;
     sc_error err;
     CHECK_INT(read_path(test_data("iges/Disc.igs"), &s, &err), SC_OK);
@@ -359,6 +365,7 @@ TEST(iges_disc_without_line_breaks)
 
 TEST(iges_bad_header_read_leniently)
 {
+    REQUIRE_DATA("iges/bad_header.igs");
     sc_scene s;
     sc_error err;
     CHECK_INT(read_path(test_data("iges/bad_header.igs"), &s, &err), SC_OK);
@@ -378,6 +385,7 @@ TEST(iges_bad_header_read_leniently)
 
 TEST(iges_cli_info)
 {
+    REQUIRE_DATA("iges/occ22470.igs");
     char cmd[1024], *out = NULL, *err = NULL;
     snprintf(cmd, sizeof cmd, "%s info %s", test_cli, test_data("iges/occ22470.igs"));
     int status = test_run(cmd, &out, &err);
@@ -1079,6 +1087,7 @@ TEST(iges_malformed_degree_and_numbers)
  * surfaces get the scene's default colour, not black. */
 TEST(iges_unassigned_colour_is_default)
 {
+    REQUIRE_DATA("iges/gpucast_part.igs");
     sc_scene scene, blank;
     sc_error err;
     CHECK_INT(sc_read_scene(test_data("iges/gpucast_part.igs"), &scene, &err), SC_OK);

@@ -12,14 +12,6 @@
 #include "io.h"
 #include "nurbs.h"
 
-static const char *root_path(const char *rel)
-{
-    static char bufs[4][1024];
-    static int next;
-    char *b = bufs[next++ % 4];
-    snprintf(b, 1024, "%s/%s", test_root_dir, rel);
-    return b;
-}
 
 static int read_text(const char *text, sc_scene *scene, sc_error *err)
 {
@@ -346,7 +338,7 @@ TEST(readers_obj_sphere_example)
 {
     sc_scene scene;
     sc_error err;
-    CHECK_INT(sc_read_scene(root_path("examples/scenes/sphere.obj"), &scene, &err), SC_OK);
+    CHECK_INT(sc_read_scene(test_root("examples/scenes/sphere.obj"), &scene, &err), SC_OK);
     CHECK_INT(scene.nsurfaces, 1);
     const sc_surface *s = &scene.surfaces[0];
     CHECK_STR(s->name, "sphere");
@@ -384,7 +376,7 @@ TEST(readers_obj_trim_pieces)
 {
     sc_scene scene;
     sc_error err;
-    CHECK_INT(sc_read_scene(root_path("examples/scenes/trimmed_hole.obj"), &scene, &err), SC_OK);
+    CHECK_INT(sc_read_scene(test_root("examples/scenes/trimmed_hole.obj"), &scene, &err), SC_OK);
     CHECK_INT(scene.nsurfaces, 1);
     const sc_surface *s = &scene.surfaces[0];
     CHECK_INT(s->nloops, 2);
@@ -549,17 +541,14 @@ static void roundtrip(const char *scene_path, const char *out_name)
 
 TEST(readers_roundtrip_teapot32)
 {
-    const char *path = test_data("teaset/teapot32.bpt");
-    if (access(path, R_OK))
-        SKIP("test data %s not found", path);
-    roundtrip(path, "teapot32.obj");
+    roundtrip(TEST_TEAPOT32, "teapot32.obj");
 }
 
 TEST(readers_roundtrip_trimmed_rational)
 {
-    roundtrip(root_path("examples/scenes/trimmed_hole.obj"), "trimmed_hole.obj");
-    roundtrip(root_path("examples/scenes/sphere.obj"), "sphere.obj");
-    roundtrip(root_path("examples/scenes/mixed.obj"), "mixed.obj");
+    roundtrip(test_root("examples/scenes/trimmed_hole.obj"), "trimmed_hole.obj");
+    roundtrip(test_root("examples/scenes/sphere.obj"), "sphere.obj");
+    roundtrip(test_root("examples/scenes/mixed.obj"), "mixed.obj");
 }
 
 TEST(readers_writer_bakes_transform)
@@ -685,9 +674,7 @@ TEST(readers_cli_help)
 
 TEST(readers_cli_info_teapot)
 {
-    const char *path = test_data("teaset/teapot32.bpt");
-    if (access(path, R_OK))
-        SKIP("test data %s not found", path);
+    const char *path = TEST_TEAPOT32;
     /* The bounding box from a plain scan of every control point in the file. */
     FILE *f = fopen(path, "r");
     char line[256];
@@ -717,7 +704,7 @@ TEST(readers_cli_info_teapot)
 TEST(readers_cli_info_obj)
 {
     char cmd[1024], *o, *e;
-    snprintf(cmd, sizeof cmd, "%s info %s", test_cli, root_path("examples/scenes/trimmed_hole.obj"));
+    snprintf(cmd, sizeof cmd, "%s info %s", test_cli, test_root("examples/scenes/trimmed_hole.obj"));
     CHECK_INT(test_run(cmd, &o, &e), 0);
     CHECK_CONTAINS(o, "surfaces 1\nsurface 0 deg 3 3 rational 0 ctrl 4 4 loops 2 segments 3\n");
     free(o);

@@ -72,6 +72,13 @@ const char *test_data(const char *rel)
     return b;
 }
 
+const char *test_root(const char *rel)
+{
+    char *b = (char *)rotate();
+    snprintf(b, 1024, "%s/%s", test_root_dir, rel);
+    return b;
+}
+
 const char *test_write_tmp(const char *name, const char *text)
 {
     char *b = (char *)rotate();
