@@ -1,51 +1,7 @@
 /* program.c — from a key to an optimised program: the metaprogram the key
- * names, validation, and the pass list run to a fixed point with
- * validation after every pass and a hook after every stage (--dump-ir). */
+ * names, validation, then the pass list (optimize.c) with a hook after
+ * every stage (--dump-ir). */
 #include "newton.h"
-
-typedef struct pass {
-    const char *name;
-    bool (*run)(scg_program *);
-} pass;
-
-/* The pass list. Folding first exposes equal constants to CSE; copy
- * propagation hands folding and CSE the values stored rather than loads;
- * CSE leaves duplicates dead for DCE. */
-static const pass passes[] = {
-    {"fold", scg_opt_fold},
-    {"copy", scg_opt_copy},
-    {"cse", scg_opt_cse},
-    {"dce", scg_opt_dce},
-};
-
-int scg_optimize(scg_program *prog, scg_stage_fn on_stage, void *user, sc_error *err)
-{
-    sc_error local;
-    if (!err)
-        err = &local;
-    /* Each pass only removes or simplifies, so a fixed point comes in a few
-     * rounds; the cap keeps a pass that undid another's work from looping
-     * (the program is valid after every pass either way). */
-    for (int round = 0; round < 100; round++) {
-        bool progress = false;
-        for (size_t i = 0; i < sizeof passes / sizeof passes[0]; i++) {
-            if (!passes[i].run(prog))
-                continue;
-            progress = true;
-            if (scg_validate(prog, err) != SC_OK) {
-                char msg[sizeof err->message];
-                snprintf(msg, sizeof msg, "after pass %s: %.480s", passes[i].name, err->message);
-                snprintf(err->message, sizeof err->message, "%s", msg);
-                return SC_FAIL;
-            }
-            if (on_stage)
-                on_stage(passes[i].name, prog, user);
-        }
-        if (!progress)
-            return SC_OK;
-    }
-    return SC_OK;
-}
 
 int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
 {

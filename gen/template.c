@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "embedded.h"
 
 static void text_reserve(scg_text *t, size_t extra)
 {
@@ -56,7 +55,7 @@ void scg_text_free(scg_text *t)
 
 const char *scg_template_get(const char *name, sc_error *err)
 {
-    const sc_embedded_file *f = sc_embedded_find(name);
+    const sc_embedded_file *f = sc_embedded_find(scg_embedded_templates, name);
     if (!f) {
         sc_fail(err, NULL, 0, "no embedded template '%s' (is it in templates/?)", name);
         return NULL;

@@ -12,7 +12,11 @@
 
 #include <stddef.h>
 
+#include "embedded.h"
 #include "sc_base.h"
+
+/* The templates/ folder, embedded by the Makefile. */
+extern const sc_embedded_file scg_embedded_templates[];
 
 /* Growable NUL-terminated text. Zero-initialised is an empty buffer. */
 typedef struct scg_text {

@@ -108,10 +108,11 @@ TEST(install_example_against_installed_copy)
     CHECK(file_size(buf, &size) && size > 0);
     snprintf(buf, sizeof buf, "%s/bin/splinecast", prefix);
     CHECK(file_size(buf, &size) && size > 0);
-    /* The public header is the only header installed. */
+    /* The public headers are the only headers installed: splinecast.h and
+     * the base it includes. */
     snprintf(cmd, sizeof cmd, "ls '%s/include'", prefix);
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_STR(out, "splinecast.h\n");
+    CHECK_STR(out, "splinecast.h\nsplinecast_base.h\n");
     free(out);
     /* The .pc names the final prefix, not the staging tree. */
     snprintf(cmd, sizeof cmd, "cat '%s/lib/pkgconfig/splinecast.pc'", prefix);

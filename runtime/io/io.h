@@ -5,7 +5,12 @@
 #ifndef SC_IO_H
 #define SC_IO_H
 
+#include "embedded.h"
 #include "scene.h"
+
+/* The default scene files (examples/scenes/teapot32.bpt), embedded by the
+ * Makefile. */
+extern const sc_embedded_file sc_embedded_scenes[];
 
 /* Reads by extension: .bpt, .obj, .igs/.iges (case-insensitive). The
  * special name "teapot" (no file) is the embedded 32-patch teapot. */

@@ -32,7 +32,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "embedded.h"
 #include "io.h"
 #include "nurbs.h"
 
@@ -756,7 +755,7 @@ int sc_refcast_cached(const char *scene_path, const sc_camera *cam, const char *
 {
     uint64_t h = fnv1a(14695981039346656037ULL, REFCAST_VERSION, sizeof REFCAST_VERSION);
     if (!strcmp(scene_path, "teapot")) {
-        const sc_embedded_file *file = sc_embedded_find("teapot32.bpt");
+        const sc_embedded_file *file = sc_embedded_find(sc_embedded_scenes, "teapot32.bpt");
         if (file)
             h = fnv1a(h, file->data, file->size);
     } else {

@@ -10,7 +10,7 @@
 
 /* SC_OK / SC_FAIL, the error record sc_error, sc_error_text and the logger
  * are part of the public interface: defined once, there. */
-#include "splinecast.h"
+#include "splinecast_base.h"
 
 /* Record a failure in `err` (which may be NULL) and return SC_FAIL.
  * `file` may be NULL and `line` 0 when there is no input position. The

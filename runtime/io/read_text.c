@@ -1,16 +1,15 @@
-/* read_scene.c — the front door of the readers: a scene by file name (the
- * extension picks the reader), the embedded default teapot, whole files
- * into memory, and the text check every reader runs before parsing so that
- * binary junk is refused with a position instead of being half-parsed. */
+/* read_text.c — what every reader shares: whole files into memory, the
+ * text check every reader runs before parsing (so that binary junk is
+ * refused with a position instead of being half-parsed), and the common
+ * end of a read (loop validation, or an empty scene on failure). The
+ * dispatcher (read_scene.c) calls the readers, and the readers call these:
+ * kept apart so that no two files call each other. */
 #include "io.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-
-#include "embedded.h"
 
 int sc_read_file(const char *path, char **data, size_t *size, sc_error *err)
 {
@@ -106,47 +105,4 @@ int sc_finish_read(int status, const char *name, sc_scene *scene)
     snprintf(scene->source, sizeof scene->source, "%s", name);
     sc_scene_validate_loops(scene);
     return SC_OK;
-}
-
-int sc_load_default_scene(sc_scene *scene, sc_error *err)
-{
-    const sc_embedded_file *f = sc_embedded_find("teapot32.bpt");
-    if (!f) {
-        sc_scene_init(scene);
-        return sc_fail(err, NULL, 0, "the embedded teapot32.bpt is missing from the library");
-    }
-    return sc_read_bpt((const char *)f->data, f->size, "teapot", scene, err);
-}
-
-static int has_extension(const char *path, const char *ext)
-{
-    size_t n = strlen(path), e = strlen(ext);
-    return n > e && !strcasecmp(path + n - e, ext);
-}
-
-int sc_read_scene(const char *path, sc_scene *scene, sc_error *err)
-{
-    if (!strcmp(path, "teapot"))
-        return sc_load_default_scene(scene, err);
-    int (*reader)(const char *, size_t, const char *, sc_scene *, sc_error *) = NULL;
-    if (has_extension(path, ".bpt"))
-        reader = sc_read_bpt;
-    else if (has_extension(path, ".obj"))
-        reader = sc_read_obj;
-    else if (has_extension(path, ".igs") || has_extension(path, ".iges"))
-        reader = sc_read_iges;
-    if (!reader) {
-        sc_scene_init(scene);
-        return sc_fail(err, path, 0, "unknown scene type: expected a .bpt, .obj, .igs or .iges "
-                       "file, or `teapot`");
-    }
-    char *data;
-    size_t size;
-    if (sc_read_file(path, &data, &size, err)) {
-        sc_scene_init(scene);
-        return SC_FAIL;
-    }
-    int status = reader(data, size, path, scene, err);
-    free(data);
-    return status;
 }
