@@ -113,7 +113,10 @@ $(CLI): $(CLI_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LIBS)
 
 # The test list: one X(name) per line starting with TEST( in tests/*.c.
-$(BUILD)/tests_list.h: $(TEST_SRC)
+# Remade every time (it is only rewritten when it changes), so that a test
+# file removed or renamed leaves no stale entry behind.
+.PHONY: FORCE
+$(BUILD)/tests_list.h: FORCE
 	@mkdir -p $(BUILD)
 	@grep -h '^TEST(' $(TEST_SRC) | sed 's/^TEST(\([A-Za-z0-9_]*\)).*/X(\1)/' > $@.tmp
 	@cmp -s $@.tmp $@ || mv $@.tmp $@; rm -f $@.tmp
