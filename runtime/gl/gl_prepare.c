@@ -1,0 +1,362 @@
+/* gl_prepare.c — what a renderer prepares before any frame (gl_render.h):
+ * a key per surface, one program per distinct key (programs.h), the patch
+ * data (gl_data.h) and the hulls (hulls.h) in one vertex buffer; and the
+ * update of one surface's share of them. Frames are drawn in gl_render.c. */
+#include "gl_render_private.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "emit_glsl.h"
+#include "gpu_layout.h"
+#include "programs.h"
+#include "scene_keys.h"
+
+/* The key's early-termination mode for the render's. */
+static scg_ert key_ert(sc_ert_mode mode)
+{
+    switch (mode) {
+    case SC_ERT_CONSERVATIVE: return SCG_ERT_CONSERVATIVE;
+    case SC_ERT_MANUAL: return SCG_ERT_BEFORE;
+    case SC_ERT_MANUAL_BOTH: return SCG_ERT_BOTH;
+    default: return SCG_ERT_NONE;
+    }
+}
+
+/* The key of one surface (scene_keys.h): its degrees, rationality and
+ * trims, the render's start, iterations and outputs; the generic program
+ * above the unrolling limit, or everywhere when asked. */
+static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key)
+{
+    sc_key_options opts = {
+        .generic_above = desc->unroll_max_degree,
+        .max_iters = desc->max_iters,
+        .tol_milli = desc->tol_milli,
+        .start_set = desc->start_set,
+        .start = desc->start,
+        .trim_method = desc->trim_method,
+        .trim_iters = desc->trim_iters,
+        .ert_set = true,
+        .ert = key_ert(desc->ert),
+        .outputs = SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV |
+                   (desc->view == SC_VIEW_ITERS ? SCG_OUTPUT_ITERS : 0) |
+                   (desc->view == SC_VIEW_UV ? SCG_OUTPUT_UVVIEW : 0) |
+                   (desc->view == SC_VIEW_HULL ? SCG_OUTPUT_HULLVIEW : 0),
+    };
+    sc_surface_key(s, &opts, key);
+    if (desc->generic && key->eval != SCG_EVAL_LOOP) {
+        key->eval = SCG_EVAL_LOOP;
+        key->deg_u = key->deg_v = 0;
+    }
+}
+
+
+/* The origin hulls are rasterised relative to: the middle of their box
+ * when the renderer is made, kept thereafter, so that a surface update
+ * rewrites the vertices of that surface alone. */
+static void set_raster_origin(sc_renderer *r)
+{
+    const sc_hulls *h = &r->hulls;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < h->count; k++)
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fmin(lo[c], h->subpatches[k].lo[c]);
+            hi[c] = fmax(hi[c], h->subpatches[k].hi[c]);
+        }
+    for (int c = 0; c < 3; c++)
+        r->raster_origin[c] = h->count ? 0.5 * (lo[c] + hi[c]) : 0;
+}
+
+/* The GPU vertices of hulls [first, first + count), whose vertices start at
+ * verts[0]: relative to their record's centre (hull.vert), in the
+ * parameters of their record's program: local [0, 1]² of the Bézier patch
+ * for `bez` records, the surface's own for `nurbs`. */
+static void fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex *verts)
+{
+    const sc_hulls *h = &r->hulls;
+    int base = count ? h->subpatches[first].first_vertex : 0;
+    for (int k = first; k < first + count; k++) {
+        const sc_subpatch *s = &h->subpatches[k];
+        int nurbs = r->kinds[s->surface] == SCG_PATCH_NURBS;
+        double du = nurbs ? (s->domain[1] - s->domain[0]) / (s->local[1] - s->local[0]) : 1;
+        double dv = nurbs ? (s->domain[3] - s->domain[2]) / (s->local[3] - s->local[2]) : 1;
+        double ou = nurbs ? s->domain[0] - du * s->local[0] : 0;
+        double ov = nurbs ? s->domain[2] - dv * s->local[2] : 0;
+        const double *rect = nurbs ? s->domain : s->local;
+        int record = sc_gpu_data_record(&r->data, s->surface, s->patch);
+        const double *centre = sc_gpu_data_record_centre(&r->data, record);
+        for (int v = s->first_vertex; v < s->first_vertex + s->vertex_count; v++) {
+            gpu_vertex *g = &verts[v - base];
+            for (int c = 0; c < 3; c++) {
+                g->pos[c] = (float)(h->vertices[v].pos[c] - centre[c]);
+                g->raster_pos[c] = (float)(h->vertices[v].pos[c] - r->raster_origin[c]);
+            }
+            g->uv[0] = (float)(ou + du * h->vertices[v].uv[0]);
+            g->uv[1] = (float)(ov + dv * h->vertices[v].uv[1]);
+            for (int c = 0; c < 4; c++)
+                g->domain[c] = (float)rect[c];
+            g->record = record;
+        }
+    }
+}
+
+/* Every hull into new vertex and index buffers, and the per-hull scratch
+ * of a frame sized for them. */
+static int upload_hulls(sc_renderer *r, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    const sc_hulls *h = &r->hulls;
+    gpu_vertex *verts = sc_alloc((size_t)(h->nvertices ? h->nvertices : 1), sizeof *verts);
+    fill_vertices(r, 0, h->count, verts);
+    if (r->vertex_buffer)
+        gl->DeleteBuffers(1, &r->vertex_buffer);
+    if (r->index_buffer)
+        gl->DeleteBuffers(1, &r->index_buffer);
+    gl->CreateBuffers(1, &r->vertex_buffer);
+    gl->CreateBuffers(1, &r->index_buffer);
+    size_t vbytes = (size_t)(h->nvertices ? h->nvertices : 1) * sizeof *verts;
+    size_t ibytes = (size_t)(h->nindices ? h->nindices : 1) * sizeof(uint32_t);
+    /* Dynamic: a surface update rewrites its range. */
+    gl->NamedBufferStorage(r->vertex_buffer, (GLsizeiptr)vbytes, verts, GL_DYNAMIC_STORAGE_BIT);
+    /* Rewritten every frame in drawing order. */
+    gl->NamedBufferStorage(r->index_buffer, (GLsizeiptr)ibytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    free(verts);
+    r->hull_bytes = vbytes + ibytes;
+    r->hull_bytes_uploaded = vbytes;
+    GLuint vao = r->vertex_array;
+    gl->VertexArrayVertexBuffer(vao, 0, r->vertex_buffer, 0, sizeof(gpu_vertex));
+    gl->VertexArrayElementBuffer(vao, r->index_buffer);
+    r->frame_indices = sc_realloc(r->frame_indices, (size_t)(h->nindices ? h->nindices : 1),
+                                  sizeof(uint32_t));
+    size_t count = (size_t)(h->count ? h->count : 1);
+    r->distance = sc_realloc(r->distance, count, sizeof(double));
+    r->items = sc_realloc(r->items, count, sizeof *r->items);
+    r->inside = sc_realloc(r->inside, count, sizeof *r->inside);
+    /* At most one run per hull, plus the inside hulls' runs per group. */
+    r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
+    return sc_gl_check(gl, "uploading the hulls", err);
+}
+
+/* The vertices of surface s's hulls, rewritten in their range of the
+ * vertex buffer (its hulls kept their counts, so nothing else moved; the
+ * index buffer is written every frame anyway). */
+static int upload_surface_hulls(sc_renderer *r, int s, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    const sc_hull_range *range = &r->hulls.surfaces[s];
+    r->hull_bytes_uploaded = (size_t)range->vertex_count * sizeof(gpu_vertex);
+    if (!range->vertex_count)
+        return SC_OK;
+    gpu_vertex *verts = sc_alloc((size_t)range->vertex_count, sizeof *verts);
+    fill_vertices(r, range->first_subpatch, range->subpatch_count, verts);
+    gl->NamedBufferSubData(r->vertex_buffer,
+                           (GLintptr)((size_t)range->first_vertex * sizeof(gpu_vertex)),
+                           (GLsizeiptr)r->hull_bytes_uploaded, verts);
+    free(verts);
+    return sc_gl_check(gl, "updating a surface's hulls", err);
+}
+
+/* One group per distinct program the surfaces are drawn with, in the order
+ * the surfaces first ask for it (the keys never change: a surface that
+ * would change its key needs a new renderer). */
+static void build_groups(sc_renderer *r)
+{
+    int n = r->scene->nsurfaces;
+    r->groups = sc_alloc((size_t)(n ? n : 1), sizeof *r->groups);
+    r->surface_group = sc_alloc((size_t)(n ? n : 1), sizeof *r->surface_group);
+    for (int s = 0; s < n; s++) {
+        int g = 0;
+        while (g < r->ngroups && r->groups[g].program.id != r->surface_program[s].id)
+            g++;
+        if (g == r->ngroups)
+            r->groups[r->ngroups++].program = r->surface_program[s];
+        r->surface_group[s] = g;
+    }
+    r->group_seen = sc_alloc((size_t)(r->ngroups ? r->ngroups : 1), sizeof(double));
+}
+
+/* Each hull's group, after the hulls were (re)built. */
+static void group_hulls(sc_renderer *r)
+{
+    r->hull_group = sc_realloc(r->hull_group, (size_t)(r->hulls.count ? r->hulls.count : 1),
+                               sizeof(int));
+    for (int k = 0; k < r->hulls.count; k++)
+        r->hull_group[k] = r->surface_group[r->hulls.subpatches[k].surface];
+}
+
+static void setup_vertex_array(sc_renderer *r)
+{
+    const sc_gl *gl = r->gl;
+    gl->CreateVertexArrays(1, &r->vertex_array);
+    GLuint vao = r->vertex_array;
+    gl->EnableVertexArrayAttrib(vao, 0);
+    gl->VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, pos));
+    gl->EnableVertexArrayAttrib(vao, 1);
+    gl->VertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, uv));
+    gl->EnableVertexArrayAttrib(vao, 2);
+    gl->VertexArrayAttribFormat(vao, 2, 4, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, domain));
+    gl->EnableVertexArrayAttrib(vao, 3);
+    gl->VertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(gpu_vertex, record));
+    gl->EnableVertexArrayAttrib(vao, 4);
+    gl->VertexArrayAttribFormat(vao, 4, 3, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, raster_pos));
+    for (int a = 0; a < 5; a++)
+        gl->VertexArrayAttribBinding(vao, (GLuint)a, 0);
+}
+
+static void upload_colours(sc_renderer *r)
+{
+    const sc_gl *gl = r->gl;
+    int n = r->scene->nsurfaces ? r->scene->nsurfaces : 1;
+    float *colours = sc_alloc((size_t)n * 4, sizeof(float));
+    for (int s = 0; s < r->scene->nsurfaces; s++) {
+        memcpy(colours + 4 * s, r->scene->surfaces[s].color, 3 * sizeof(float));
+        colours[4 * s + 3] = 1;
+    }
+    gl->CreateBuffers(1, &r->colour_buffer);
+    r->colour_bytes = (size_t)n * 4 * sizeof(float);
+    gl->NamedBufferStorage(r->colour_buffer, (GLsizeiptr)r->colour_bytes, colours, 0);
+    gl->CreateTextures(GL_TEXTURE_BUFFER, 1, &r->colour_texture);
+    gl->TextureBuffer(r->colour_texture, GL_RGBA32F, r->colour_buffer);
+    free(colours);
+}
+
+int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
+                       sc_renderer **out, sc_error *err)
+{
+    static const sc_render_desc defaults = {0};
+    *out = NULL;
+    sc_renderer *r = sc_alloc(1, sizeof *r);
+    r->gl = gl;
+    r->scene = scene;
+    r->desc = desc ? *desc : defaults;
+    if (!r->desc.ert)
+        r->desc.ert = SC_RENDER_DEFAULT_ERT;
+    /* Hull faces drawn where a ray misses would read as hits nearby. */
+    if (r->desc.view == SC_VIEW_HULL)
+        r->desc.ert = SC_ERT_NONE;
+    if (!r->desc.order)
+        r->desc.order = SC_RENDER_DEFAULT_ORDER;
+    if (r->desc.batch_hulls <= 0)
+        r->desc.batch_hulls = SC_RENDER_DEFAULT_BATCH_HULLS;
+    int n = scene->nsurfaces;
+    r->keys = sc_alloc((size_t)(n ? n : 1), sizeof *r->keys);
+    r->kinds = sc_alloc((size_t)(n ? n : 1), sizeof *r->kinds);
+    r->surface_program = sc_alloc((size_t)(n ? n : 1), sizeof *r->surface_program);
+    r->own_programs = !r->desc.programs;
+    r->programs = r->own_programs ? sc_program_cache_create(gl) : r->desc.programs;
+    double t0 = sc_now();
+    for (int s = 0; s < n; s++) {
+        if (sc_surface_drawable(scene, s, err) != SC_OK)
+            goto fail;
+        surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
+        r->kinds[s] = r->keys[s].kind;
+        if (sc_program_for_key(r->programs, &r->keys[s], &r->surface_program[s], err) != SC_OK)
+            goto fail;
+    }
+    r->compile_ms = 1e3 * (sc_now() - t0);
+    if (sc_hulls_build(scene, &r->desc.hulls, &r->hulls, err) != SC_OK ||
+        sc_gpu_data_upload(gl, scene, r->keys, &r->data, err) != SC_OK)
+        goto fail;
+    setup_vertex_array(r);
+    upload_colours(r);
+    set_raster_origin(r);
+    if (upload_hulls(r, err) != SC_OK)
+        goto fail;
+    build_groups(r);
+    group_hulls(r);
+    r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded + r->colour_bytes;
+    *out = r;
+    return SC_OK;
+fail:
+    sc_renderer_destroy(r);
+    return SC_FAIL;
+}
+
+void sc_renderer_destroy(sc_renderer *r)
+{
+    if (!r)
+        return;
+    const sc_gl *gl = r->gl;
+    if (r->nearest_texture)
+        gl->DeleteTextures(1, &r->nearest_texture);
+    sc_gl_target_destroy(gl, &r->target);
+    sc_gpu_data_free(gl, &r->data);
+    GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};
+    for (int i = 0; i < 3; i++)
+        if (buffers[i])
+            gl->DeleteBuffers(1, &buffers[i]);
+    if (r->colour_texture)
+        gl->DeleteTextures(1, &r->colour_texture);
+    if (r->vertex_array)
+        gl->DeleteVertexArrays(1, &r->vertex_array);
+    if (r->own_programs)
+        sc_program_cache_destroy(r->programs);
+    sc_hulls_free(&r->hulls);
+    free(r->groups);
+    free(r->surface_group);
+    free(r->hull_group);
+    free(r->keys);
+    free(r->kinds);
+    free(r->surface_program);
+    free(r->frame_indices);
+    free(r->distance);
+    free(r->items);
+    free(r->inside);
+    free(r->runs);
+    free(r->group_seen);
+    free(r->uvt);
+    free(r->nearest);
+    free(r->tile_far);
+    free(r->cosine);
+    free(r);
+}
+
+int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
+{
+    if (surface < 0 || surface >= r->scene->nsurfaces)
+        return sc_fail(err, NULL, 0, "no surface %d in the scene", surface);
+    if (sc_surface_drawable(r->scene, surface, err) != SC_OK)
+        return SC_FAIL;
+    scg_key key;
+    surface_key(&r->scene->surfaces[surface], &r->desc, &key);
+    if (!scg_key_equal(&key, &r->keys[surface]))
+        return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
+    int hulls_moved, records_moved;
+    if (sc_hulls_update_surface(&r->hulls, r->scene, surface, &hulls_moved, err) != SC_OK ||
+        sc_gpu_data_update_surface(r->gl, &r->data, r->scene, surface, r->keys, &records_moved,
+                                   err) != SC_OK)
+        return SC_FAIL;
+    /* Vertices carry their record's number and centre: when other hulls or
+     * records moved, every vertex is written again. */
+    if (!hulls_moved && !records_moved) {
+        if (upload_surface_hulls(r, surface, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        if (upload_hulls(r, err) != SC_OK)
+            return SC_FAIL;
+        group_hulls(r);
+    }
+    r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded;
+    return SC_OK;
+}
+
+void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
+{
+    stats->programs = r->ngroups;
+    for (int g = 0; g < r->ngroups; g++)
+        stats->programs += r->groups[g].inside.id != 0;
+    stats->hulls = r->hulls.count;
+    stats->triangles = r->hulls.nindices / 3;
+    stats->gpu_bytes = r->data.bytes + r->hull_bytes + r->colour_bytes;
+    stats->bytes_uploaded = r->bytes_uploaded;
+    stats->compile_ms = r->compile_ms;
+    stats->draw_calls = r->draw_calls;
+    stats->program_switches = r->program_switches;
+    stats->culled_hulls = r->culled;
+    stats->readbacks = r->readbacks;
+}
+
+const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface)
+{
+    return &r->keys[surface];
+}
