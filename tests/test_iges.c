@@ -1,157 +1,16 @@
 /* test_iges.c — the IGES reader: surface counts and facts of the real CAD
  * files (known from the data README), exact conversion of trim curves and
  * domains checked against analytic shapes in small IGES files written
- * here, and malformed files that must be refused with the entity named or
- * read leniently. */
+ * here (malformed files: test_iges_malformed.c). */
 #include "test.h"
 
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "io.h"
-#include "nurbs.h"
+#include "iges_files.h"
 #include "trim.h"
 
 static const char *occt_dir = "/usr/share/opencascade/data/iges";
-
-/* Warnings go to a buffer so that tests can check them and stay quiet. */
-static char warnings[4096];
-static void capture(sc_log_level level, const char *msg, void *user)
-{
-    (void)user;
-    if (level >= SC_LOG_WARN && strlen(warnings) + strlen(msg) + 2 < sizeof warnings) {
-        strcat(warnings, msg);
-        strcat(warnings, "\n");
-    }
-}
-
-static int read_path(const char *path, sc_scene *scene, sc_error *err)
-{
-    warnings[0] = 0;
-    sc_set_logger(capture, NULL);
-    int status = sc_read_scene(path, scene, err);
-    sc_set_logger(NULL, NULL);
-    return status;
-}
-
-static int read_text(const char *text, sc_scene *scene, sc_error *err)
-{
-    warnings[0] = 0;
-    memset(err, 0, sizeof *err);
-    sc_set_logger(capture, NULL);
-    int status = sc_read_iges(text, strlen(text), "t.igs", scene, err);
-    sc_set_logger(NULL, NULL);
-    return status;
-}
-
-static const char *error_text(const sc_error *err)
-{
-    static char buf[1024];
-    return sc_error_text(err, buf, sizeof buf);
-}
-
-static int skipped_count(const sc_scene *s, const char *type, const char *reason)
-{
-    for (int i = 0; i < s->nskipped; i++)
-        if (!strcmp(s->skipped[i].type, type) && !strcmp(s->skipped[i].reason, reason))
-            return s->skipped[i].count;
-    return 0;
-}
-
-/* ---- writing small IGES files ---- */
-
-typedef struct spec {
-    int type;
-    const char *params; /* free-format parameters ending with ';' */
-    int xform;          /* directory field 7 */
-    int color;          /* directory field 13 */
-    const char *label;
-} spec;
-
-static void append(char **buf, size_t *len, const char *text72, char section, int seq)
-{
-    char record[96];
-    snprintf(record, sizeof record, "%-72.72s%c%7d\n", text72, section, seq % 10000000);
-    *buf = realloc(*buf, *len + 82);
-    memcpy(*buf + *len, record, 82); /* 81 characters and the NUL */
-    *len += 81;
-}
-
-/* A fixed-format file: one S, one G record, two D records per entity, the
- * parameters cut into 64-column P records. Entity k has DE 2k+1; its first
- * P record is at line 3 + 2n + (P records before it). */
-static char *make_iges(const spec *e, int n)
-{
-    char *buf = NULL, line[128];
-    size_t len = 0;
-    append(&buf, &len, "splinecast test file", 'S', 1);
-    append(&buf, &len, "1H,,1H;,4Htest,5Ht.igs,;", 'G', 1);
-    int pline = 1, *first = calloc((size_t)n, sizeof(int)), *count = calloc((size_t)n, sizeof(int));
-    for (int k = 0; k < n; k++) {
-        first[k] = pline;
-        count[k] = ((int)strlen(e[k].params) + 63) / 64;
-        pline += count[k];
-    }
-    for (int k = 0; k < n; k++) {
-        snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d%8d%8d%8s", e[k].type, first[k], 0, 0, 0,
-                 0, e[k].xform, 0, "00000000");
-        append(&buf, &len, line, 'D', 2 * k + 1);
-        snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8s%8s%8s%8d", e[k].type, 0, e[k].color,
-                 count[k], 0, "", "", e[k].label ? e[k].label : "", 0);
-        append(&buf, &len, line, 'D', 2 * k + 2);
-    }
-    int seq = 1;
-    for (int k = 0; k < n; k++) {
-        const char *p = e[k].params;
-        for (int c = 0; c < count[k]; c++) {
-            snprintf(line, sizeof line, "%-64.64s%8d", p + 64 * c, 2 * k + 1);
-            append(&buf, &len, line, 'P', seq++);
-        }
-    }
-    snprintf(line, sizeof line, "S%7dG%7dD%7dP%7d", 1, 1, 2 * n, seq - 1);
-    append(&buf, &len, line, 'T', 1);
-    free(first);
-    free(count);
-    return buf;
-}
-
-/* Reads the file make_iges writes for `e`; prints the error on failure. */
-static int read_specs(const spec *e, int n, sc_scene *scene)
-{
-    char *text = make_iges(e, n);
-    sc_error err;
-    int status = read_text(text, scene, &err);
-    free(text);
-    if (status)
-        fprintf(stderr, "  %s\n", error_text(&err));
-    return status;
-}
-
-/* "t.igs:N:" for the line of the file holding `needle`. */
-static const char *position_of(const char *text, const char *needle)
-{
-    static char buf[32];
-    const char *at = strstr(text, needle);
-    int line = 1;
-    for (const char *c = text; at && c < at; c++)
-        line += *c == '\n';
-    snprintf(buf, sizeof buf, "t.igs:%d:", at ? line : -1);
-    return buf;
-}
-
-/* The plane (u, v, 0) over [0, size]^2, bilinear. */
-static char *plane_params(double size)
-{
-    static char buf[8][256];
-    static int next;
-    char *b = buf[next++ % 8];
-    snprintf(b, 256, "128,1,1,1,1,0,0,1,0,0,0.,0.,%g,%g,0.,0.,%g,%g,1.,1.,1.,1.,"
-             "0.,0.,0.,%g,0.,0.,0.,%g,0.,%g,%g,0.,0.,%g,0.,%g;", size, size, size, size, size,
-             size, size, size, size, size);
-    return b;
-}
-
-static void eval2(const sc_curve *c, double t, double p[2]) { sc_curve_eval(c, t, p, NULL); }
 
 /* ---- the real files ---- */
 
@@ -173,9 +32,9 @@ TEST(iges_counts_shared_files)
     for (size_t i = 0; i < sizeof facts / sizeof facts[0]; i++) {
         sc_scene s;
         sc_error err;
-        int status = read_path(test_data(facts[i].file), &s, &err);
+        int status = iges_read_path(test_data(facts[i].file), &s, &err);
         if (status)
-            fprintf(stderr, "  %s\n", error_text(&err));
+            fprintf(stderr, "  %s\n", iges_error_text(&err));
         CHECK_INT(status, SC_OK);
         if (s.nsurfaces != facts[i].surfaces || s.dropped_loops != 0)
             fprintf(stderr, "  in %s\n", facts[i].file);
@@ -194,7 +53,7 @@ TEST(iges_counts_occt_files)
         SKIP("%s is missing (Debian package occt-misc)", occt_dir);
     sc_scene s;
     sc_error err;
-    CHECK_INT(read_path(path, &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(path, &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 45);
     CHECK_INT(s.dropped_loops, 0);
     /* README: degrees (2,2)x12, (1,2)x15, (1,1)x14, (3,1)x4; 27 rational;
@@ -221,7 +80,7 @@ TEST(iges_counts_occt_files)
     sc_scene_free(&s);
 
     snprintf(path, sizeof path, "%s/bearing.iges", occt_dir);
-    CHECK_INT(read_path(path, &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(path, &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 213);
     /* Polynomial, degrees up to 8. Its curves go up to degree 11, but
      * those of parameter space (142 BPTR) only up to 6. */
@@ -253,7 +112,7 @@ TEST(iges_bug24012_face)
     REQUIRE_DATA("iges/bug24012_face.igs");
     sc_scene s;
     sc_error err;
-    CHECK_INT(read_path(test_data("iges/bug24012_face.igs"), &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(test_data("iges/bug24012_face.igs"), &s, &err), SC_OK);
     const sc_surface *f = &s.surfaces[0];
     CHECK_INT(f->deg_u, 3);
     CHECK_INT(f->deg_v, 3);
@@ -271,7 +130,7 @@ TEST(iges_bug24012_face)
         CHECK_INT(k->dim, 2);
         CHECK_INT(k->degree, 1);
         double p[2];
-        eval2(k, k->knots[0], p);
+        iges_eval2(k, k->knots[0], p);
         CHECK_NEAR(p[0], corner[c][0], 0);
         CHECK_NEAR(p[1], corner[c][1], 0);
     }
@@ -284,7 +143,7 @@ TEST(iges_torus_high_degree_across_seam)
     REQUIRE_DATA("iges/OCC26138_Torus.igs");
     sc_scene s;
     sc_error err;
-    CHECK_INT(read_path(test_data("iges/OCC26138_Torus.igs"), &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(test_data("iges/OCC26138_Torus.igs"), &s, &err), SC_OK);
     const sc_surface *f = &s.surfaces[0];
     CHECK_INT(f->deg_u, 12);
     CHECK_INT(f->deg_v, 12);
@@ -308,7 +167,7 @@ TEST(iges_brep_faces_untrimmed_and_coloured)
     REQUIRE_DATA("iges/occ22470.igs");
     sc_scene s;
     sc_error err;
-    CHECK_INT(read_path(test_data("iges/occ22470.igs"), &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(test_data("iges/occ22470.igs"), &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 18);
     int rational = 0, grey = 0;
     for (int i = 0; i < s.nsurfaces; i++) {
@@ -318,9 +177,9 @@ TEST(iges_brep_faces_untrimmed_and_coloured)
     }
     CHECK_INT(rational, 14);
     CHECK_INT(grey, 0); /* every face has a 314 colour */
-    CHECK_INT(skipped_count(&s, "iges-508", "no-parameter-curve"), 18);
+    CHECK_INT(iges_skipped_count(&s, "iges-508", "no-parameter-curve"), 18);
     /* One warning for the file, not one per face. */
-    const char *first = strstr(warnings, "model-space");
+    const char *first = strstr(iges_warnings, "model-space");
     CHECK(first != NULL);
     CHECK(strstr(first + 1, "model-space") == NULL);
     sc_scene_free(&s);
@@ -331,7 +190,7 @@ TEST(iges_teapot_leniency)
     REQUIRE_DATA("iges/gpucast_teapot.igs");
     sc_scene s, bpt;
     sc_error err;
-    CHECK_INT(read_path(test_data("iges/gpucast_teapot.igs"), &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(test_data("iges/gpucast_teapot.igs"), &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 32);
     for (int i = 0; i < s.nsurfaces; i++) {
         CHECK_INT(s.surfaces[i].deg_u, 3);
@@ -339,7 +198,7 @@ TEST(iges_teapot_leniency)
         CHECK_INT(s.surfaces[i].nloops, 0);
     }
     /* The same teapot as the .bpt file, read by another reader. */
-    CHECK_INT(read_path(TEST_TEAPOT32, &bpt, &err), SC_OK);
+    CHECK_INT(iges_read_path(TEST_TEAPOT32, &bpt, &err), SC_OK);
     double lo[3], hi[3], blo[3], bhi[3];
     sc_scene_bounds(&s, lo, hi);
     sc_scene_bounds(&bpt, blo, bhi);
@@ -356,10 +215,10 @@ TEST(iges_disc_without_line_breaks)
     REQUIRE_DATA("iges/Disc.igs");
     sc_scene s;
     sc_error err;
-    CHECK_INT(read_path(test_data("iges/Disc.igs"), &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(test_data("iges/Disc.igs"), &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 0);
-    CHECK_INT(skipped_count(&s, "iges-408", "unsupported"), 2);
-    CHECK_INT(skipped_count(&s, "iges-308", "unsupported"), 2);
+    CHECK_INT(iges_skipped_count(&s, "iges-408", "unsupported"), 2);
+    CHECK_INT(iges_skipped_count(&s, "iges-308", "unsupported"), 2);
     sc_scene_free(&s);
 }
 
@@ -368,7 +227,7 @@ TEST(iges_bad_header_read_leniently)
     REQUIRE_DATA("iges/bad_header.igs");
     sc_scene s;
     sc_error err;
-    CHECK_INT(read_path(test_data("iges/bad_header.igs"), &s, &err), SC_OK);
+    CHECK_INT(iges_read_path(test_data("iges/bad_header.igs"), &s, &err), SC_OK);
     CHECK_INT(s.nsurfaces, 1);
     const sc_surface *f = &s.surfaces[0];
     CHECK_INT(f->deg_u, 1);
@@ -377,7 +236,7 @@ TEST(iges_bad_header_read_leniently)
     /* The outer loop is the rectangle [0.3, 0.7] x [0, 1] of four lines. */
     CHECK_INT(f->loops[0].ncurves, 4);
     double p[2];
-    eval2(&f->loops[0].curves[0], 0, p);
+    iges_eval2(&f->loops[0].curves[0], 0, p);
     CHECK_NEAR(p[0], 0.3, 1e-12);
     CHECK_NEAR(p[1], 0.0, 1e-12);
     sc_scene_free(&s);
@@ -403,7 +262,7 @@ TEST(iges_arcs_exact)
     /* A full circle as the outer loop of one plane; on a second plane a
      * circle moved by a 124 (shear y += 0.1 z, translation x += 0.1) at
      * ZT = 1, as a hole with the domain as outer boundary. */
-    char *plane = plane_params(1);
+    char *plane = iges_plane_params(1);
     spec e[] = {
         {128, plane, 0, 0, NULL},
         {100, "100,0.,0.5,0.5,0.75,0.5,0.75,0.5;", 0, 0, NULL},
@@ -418,7 +277,7 @@ TEST(iges_arcs_exact)
         {144, "144,9,0,1,0,19;", 0, 0, NULL},
     };
     sc_scene s;
-    CHECK_INT(read_specs(e, 11, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, 11, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     const sc_curve *c = &s.surfaces[0].loops[0].curves[0];
     CHECK_INT(c->degree, 2);
@@ -426,12 +285,12 @@ TEST(iges_arcs_exact)
     double t0, t1, p[2];
     sc_curve_domain(c, &t0, &t1);
     for (int i = 0; i <= 64; i++) {
-        eval2(c, t0 + (t1 - t0) * i / 64, p);
+        iges_eval2(c, t0 + (t1 - t0) * i / 64, p);
         CHECK_NEAR(hypot(p[0] - 0.5, p[1] - 0.5), 0.25, 1e-14);
     }
-    eval2(c, t0, p);
+    iges_eval2(c, t0, p);
     CHECK_NEAR(p[0], 0.75, 1e-15);
-    eval2(c, t0 + (t1 - t0) / 4, p); /* counter-clockwise: a quarter on */
+    iges_eval2(c, t0 + (t1 - t0) / 4, p); /* counter-clockwise: a quarter on */
     CHECK_NEAR(p[0], 0.5, 1e-15);
     CHECK_NEAR(p[1], 0.75, 1e-15);
 
@@ -447,10 +306,10 @@ TEST(iges_arcs_exact)
     CHECK_INT(c->ncp, 7);
     sc_curve_domain(c, &t0, &t1);
     for (int i = 0; i <= 48; i++) {
-        eval2(c, t0 + (t1 - t0) * i / 48, p);
+        iges_eval2(c, t0 + (t1 - t0) * i / 48, p);
         CHECK_NEAR(hypot(p[0] - 0.6, p[1] - 0.6), 0.25, 1e-14);
     }
-    eval2(c, t1, p);
+    iges_eval2(c, t1, p);
     CHECK_NEAR(p[0], 0.6, 1e-14);
     CHECK_NEAR(p[1], 0.35, 1e-14);
     CHECK_INT(s.dropped_loops, 0);
@@ -470,7 +329,7 @@ TEST(iges_unclamped_and_subrange_126)
     snprintf(full, sizeof full, uniform, "3.,6.");
     snprintf(part, sizeof part, uniform, "3.5,5.5");
     spec e[] = {
-        {128, plane_params(5), 0, 0, NULL},
+        {128, iges_plane_params(5), 0, 0, NULL},
         {126, full, 0, 0, NULL},
         {110, "110,4.,0.,0.,4.,1.,0.;", 0, 0, NULL},
         {110, "110,4.,1.,0.,1.,1.,0.;", 0, 0, NULL},
@@ -481,7 +340,7 @@ TEST(iges_unclamped_and_subrange_126)
         {126, part, 0, 0, NULL},
     };
     sc_scene s;
-    CHECK_INT(read_specs(e, 9, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, 9, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 1);
     CHECK_INT(s.dropped_loops, 0);
     const sc_curve *c = &s.surfaces[0].loops[0].curves[0];
@@ -493,7 +352,7 @@ TEST(iges_unclamped_and_subrange_126)
     CHECK_NEAR(t1, 6, 1e-12);
     for (int i = 0; i <= 30; i++) {
         double t = 3 + 0.1 * i;
-        eval2(c, t, p);
+        iges_eval2(c, t, p);
         CHECK_NEAR(p[0], t - 2, 1e-12);
         CHECK_NEAR(p[1], 0, 1e-12);
     }
@@ -501,7 +360,7 @@ TEST(iges_unclamped_and_subrange_126)
 
     /* The sub-range copy, as the bottom edge of a loop of its own. */
     spec e2[] = {
-        {128, plane_params(5), 0, 0, NULL},
+        {128, iges_plane_params(5), 0, 0, NULL},
         {126, part, 0, 0, NULL},
         {110, "110,3.5,0.,0.,2.5,1.,0.;", 0, 0, NULL},
         {110, "110,2.5,1.,0.,1.5,0.,0.;", 0, 0, NULL},
@@ -509,14 +368,14 @@ TEST(iges_unclamped_and_subrange_126)
         {142, "142,0,1,9,0,2;", 0, 0, NULL},
         {144, "144,1,1,0,11;", 0, 0, NULL},
     };
-    CHECK_INT(read_specs(e2, 7, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e2, 7, &s), SC_OK);
     c = &s.surfaces[0].loops[0].curves[0];
     sc_curve_domain(c, &t0, &t1);
     CHECK_NEAR(t0, 3.5, 1e-12);
     CHECK_NEAR(t1, 5.5, 1e-12);
-    eval2(c, t0, p);
+    iges_eval2(c, t0, p);
     CHECK_NEAR(p[0], 1.5, 1e-12);
-    eval2(c, t1, p);
+    iges_eval2(c, t1, p);
     CHECK_NEAR(p[0], 3.5, 1e-12);
     sc_scene_free(&s);
 }
@@ -540,7 +399,7 @@ TEST(iges_128_subrange_and_order)
     wavy_params(b, sizeof b, "0.5,1.5,0.25,0.75");
     spec e[] = {{128, a, 0, 0, "FULL"}, {128, b, 0, 0, NULL}};
     sc_scene s;
-    CHECK_INT(read_specs(e, 2, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, 2, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     CHECK_STR(s.surfaces[0].name, "FULL");
     CHECK_STR(s.surfaces[1].name, "iges3");
@@ -587,7 +446,7 @@ TEST(iges_trims_across_seam)
         {128, cylinder, 0, 0, NULL},
     };
     sc_scene s;
-    CHECK_INT(read_specs(e, 9, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, 9, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     const sc_surface *band = &s.surfaces[0], *whole = &s.surfaces[1];
     double u0, u1, v0, v1;
@@ -611,14 +470,14 @@ TEST(iges_transform_colour_name)
     /* Plane -> 124 translate (1, 2, 3) -> 124 scale 2: x' = 2x + (2, 4, 6).
      * Colour from a 314 (percent) and from the standard table. */
     spec e[] = {
-        {128, plane_params(1), 3, -7, "PANEL"},
+        {128, iges_plane_params(1), 3, -7, "PANEL"},
         {124, "124,1.,0.,0.,1.,0.,1.,0.,2.,0.,0.,1.,3.;", 5, 0, NULL},
         {124, "124,2.,0.,0.,0.,0.,2.,0.,0.,0.,0.,2.,0.;", 0, 0, NULL},
         {314, "314,100.,50.,0.,6Hsunset;", 0, 0, NULL},
-        {128, plane_params(1), 0, 3, NULL},
+        {128, iges_plane_params(1), 0, 3, NULL},
     };
     sc_scene s;
-    CHECK_INT(read_specs(e, 5, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, 5, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     const double expect[12] = {2, 0, 0, 2, 0, 2, 0, 4, 0, 0, 2, 6};
     for (int i = 0; i < 12; i++)
@@ -639,7 +498,7 @@ TEST(iges_reversed_member_and_missing_pcurve)
      * closes. A second surface's 142 has no parameter-space curve: kept
      * untrimmed, counted, warned once. */
     spec e[] = {
-        {128, plane_params(1), 0, 0, NULL},
+        {128, iges_plane_params(1), 0, 0, NULL},
         {110, "110,0.2,0.2,0.,0.8,0.2,0.;", 0, 0, NULL},
         {110, "110,0.8,0.2,0.,0.8,0.8,0.;", 0, 0, NULL},
         {110, "110,0.2,0.8,0.,0.8,0.8,0.;", 0, 0, NULL},
@@ -647,25 +506,25 @@ TEST(iges_reversed_member_and_missing_pcurve)
         {102, "102,4,3,5,7,9;", 0, 0, NULL},
         {142, "142,0,1,11,0,2;", 0, 0, NULL},
         {144, "144,1,1,0,13;", 0, 0, NULL},
-        {128, plane_params(1), 0, 0, NULL},
+        {128, iges_plane_params(1), 0, 0, NULL},
         {110, "110,0.,0.,0.,1.,1.,0.;", 0, 0, NULL},
         {142, "142,0,17,0,19,1;", 0, 0, NULL},
         {144, "144,17,1,0,21;", 0, 0, NULL},
     };
     sc_scene s;
-    CHECK_INT(read_specs(e, 12, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, 12, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 2);
     CHECK_INT(s.dropped_loops, 0);
     CHECK_INT(s.repaired_gaps, 0);
     const sc_loop *l = &s.surfaces[0].loops[0];
     double p[2];
-    eval2(&l->curves[2], 0, p);
+    iges_eval2(&l->curves[2], 0, p);
     CHECK_NEAR(p[0], 0.8, 0);
     CHECK_NEAR(p[1], 0.8, 0);
     CHECK_INT(s.surfaces[1].nloops, 0);
-    CHECK_INT(skipped_count(&s, "iges-142", "no-parameter-curve"), 1);
-    CHECK_CONTAINS(warnings, "t.igs:");
-    CHECK_CONTAINS(warnings, "entity 142 (D 21)");
+    CHECK_INT(iges_skipped_count(&s, "iges-142", "no-parameter-curve"), 1);
+    CHECK_CONTAINS(iges_warnings, "t.igs:");
+    CHECK_CONTAINS(iges_warnings, "entity 142 (D 21)");
     sc_scene_free(&s);
 }
 
@@ -684,7 +543,7 @@ static void holed_plane(spec *e)
     static char text[16][128];
     static const double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     static const double hole[4][2] = {{.4, .4}, {.6, .4}, {.6, .6}, {.4, .6}};
-    e[0] = (spec){128, plane_params(1), 0, 0, NULL};
+    e[0] = (spec){128, iges_plane_params(1), 0, 0, NULL};
     for (int i = 0; i < 4; i++) {
         const double *a = corner[i], *b = corner[(i + 1) % 4];
         const double *p = hole[i], *q = hole[(i + 1) % 4];
@@ -724,8 +583,8 @@ static void check_holed_face(const sc_scene *s)
         const sc_curve *c = &f->loops[1].curves[i];
         double t0, t1, a[2], b[2];
         sc_curve_domain(c, &t0, &t1);
-        eval2(c, t0, a);
-        eval2(c, t1, b);
+        iges_eval2(c, t0, a);
+        iges_eval2(c, t1, b);
         CHECK_NEAR(a[0], walk[i][0], 1e-15);
         CHECK_NEAR(a[1], walk[i][1], 1e-15);
         CHECK_NEAR(b[0], walk[i + 1][0], 1e-15);
@@ -762,10 +621,10 @@ TEST(iges_bounded_surface_with_hole)
     e[HOLE_SHARED + 1] = (spec){141, hole, 0, 0, NULL};
     e[HOLE_SHARED + 2] = (spec){143, "143,1,1,2,35,37;", 0, 0, NULL};
     sc_scene s;
-    CHECK_INT(read_specs(e, HOLE_SHARED + 3, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, HOLE_SHARED + 3, &s), SC_OK);
     check_holed_face(&s);
     CHECK_INT(s.nskipped, 0);
-    CHECK_STR(warnings, "");
+    CHECK_STR(iges_warnings, "");
     sc_scene_free(&s);
 }
 
@@ -805,282 +664,11 @@ TEST(iges_brep_face_with_hole)
     e[HOLE_SHARED + 5] = (spec){514, "514,1,43,1;", 0, 0, NULL};      /* D 45 */
     e[HOLE_SHARED + 6] = (spec){186, "186,45,1,0;", 0, 0, NULL};
     sc_scene s;
-    CHECK_INT(read_specs(e, HOLE_SHARED + 7, &s), SC_OK);
+    CHECK_INT(iges_read_specs(e, HOLE_SHARED + 7, &s), SC_OK);
     check_holed_face(&s);
     CHECK_INT(s.nskipped, 0);
-    CHECK_STR(warnings, "");
+    CHECK_STR(iges_warnings, "");
     sc_scene_free(&s);
-}
-
-/* ---- malformed files ---- */
-
-/* Reads text that must fail; checks that the message holds every needle
- * (the entity and its directory number, the position). */
-static int refused(const char *text, const char *needle1, const char *needle2)
-{
-    sc_scene s;
-    sc_error err;
-    if (read_text(text, &s, &err) == SC_OK) {
-        fprintf(stderr, "  read a malformed file without an error\n");
-        sc_scene_free(&s);
-        return 0;
-    }
-    const char *msg = error_text(&err);
-    if (s.nsurfaces != 0 || s.surfaces != NULL)
-        return 0;
-    if ((needle1 && !strstr(msg, needle1)) || (needle2 && !strstr(msg, needle2))) {
-        fprintf(stderr, "  message \"%s\" lacks \"%s\" / \"%s\"\n", msg, needle1,
-                needle2 ? needle2 : "");
-        return 0;
-    }
-    return 1;
-}
-
-static const spec good[] = {
-    {128, NULL, 0, 0, NULL}, /* plane, filled in */
-    {110, "110,0.2,0.2,0.,0.8,0.5,0.;", 0, 0, NULL},
-    {110, "110,0.8,0.5,0.,0.2,0.2,0.;", 0, 0, NULL},
-    {102, "102,2,3,5;", 0, 0, NULL},
-    {142, "142,0,1,7,0,2;", 0, 0, NULL},
-    {144, "144,1,1,0,9;", 0, 0, NULL},
-};
-enum { NGOOD = 6 };
-
-/* The good file with entity k's parameters (and optionally its directory
- * field 7) replaced. */
-static char *variant(int k, const char *params, int xform)
-{
-    spec e[NGOOD];
-    memcpy(e, good, sizeof e);
-    e[0].params = plane_params(1);
-    if (params) {
-        e[k].params = params;
-        e[k].type = atoi(params);
-    }
-    if (xform)
-        e[k].xform = xform;
-    return make_iges(e, NGOOD);
-}
-
-TEST(iges_malformed_truncated)
-{
-    char *text = variant(0, NULL, 0);
-    sc_scene s;
-    sc_error err;
-    CHECK_INT(read_text(text, &s, &err), SC_OK); /* the base file is good */
-    sc_scene_free(&s);
-    /* Cut after the 144's first record, before its terminator. */
-    char *cut = strstr(text, "144,1,1,0,9;");
-    CHECK(cut != NULL);
-    cut[11] = ',';
-    strcpy(strchr(cut, '\n') + 1, "");
-    CHECK(refused(text, "entity 144 (D 11)", "ends before the record delimiter"));
-    CHECK(refused(text, position_of(text, "144,1,1,0,9,"), NULL));
-    /* Cut inside a record. */
-    cut[8] = 0;
-    CHECK(refused(text, position_of(text, "144,1,1,"), "record of 8 columns"));
-    /* Cut inside the directory: an odd number of D records. */
-    free(text);
-    text = variant(0, NULL, 0);
-    char *d = strstr(text, "     110       0");
-    CHECK(d != NULL);
-    strcpy(d, "");
-    CHECK(refused(text, "odd number", NULL));
-    free(text);
-}
-
-TEST(iges_malformed_pointer_out_of_range)
-{
-    char *text = variant(5, "144,99,1,0,9;", 0);
-    CHECK(refused(text, "entity 144 (D 11): parameter 1: pointer 99",
-                  position_of(text, "144,99")));
-    free(text);
-    /* A parameter data pointer beyond the P section. */
-    text = variant(0, NULL, 0);
-    char *d = strstr(text, "D      3\n");
-    CHECK(d != NULL);
-    memcpy(d - 72 + 8, "     999", 8); /* field 2 of DE 3 */
-    CHECK(refused(text, "entity 110 (D 3)", "outside the P section"));
-    free(text);
-    /* A transformation pointer to something that is not a 124. */
-    text = variant(0, NULL, 5);
-    CHECK(refused(text, "entity 128 (D 1)", "not to a 124"));
-    free(text);
-}
-
-TEST(iges_unused_entities_never_fail)
-{
-    /* Next to a good plane: a 142 that nothing uses, pointing nowhere, and
-     * a 140 offset surface (unsupported) whose surface pointer is broken.
-     * Neither is used by a surface, so the file reads; the 140 is counted. */
-    spec e[] = {
-        {128, plane_params(1), 0, 0, NULL},
-        {142, "142,0,999,0,0,1;", 0, 0, NULL},
-        {140, "140,0.,0.,1.,1.,999;", 0, 0, NULL},
-    };
-    sc_scene s;
-    CHECK_INT(read_specs(e, 3, &s), SC_OK);
-    CHECK_INT(s.nsurfaces, 1);
-    CHECK_INT(skipped_count(&s, "iges-140", "unsupported"), 1);
-    sc_scene_free(&s);
-    /* The same 142 used as a trim loop: now it matters and fails the file. */
-    char *text = variant(4, "142,0,999,7,0,2;", 0);
-    CHECK(refused(text, "entity 142 (D 9): parameter 2: pointer 999",
-                  position_of(text, "142,0,999")));
-    free(text);
-}
-
-TEST(iges_malformed_reference_cycle)
-{
-    /* A composite that contains itself. */
-    char *text = variant(3, "102,2,3,7;", 0);
-    CHECK(refused(text, "entity 102 (D 7)", "cycle"));
-    free(text);
-    /* Transformation matrices that refer to each other. */
-    spec e[] = {
-        {128, plane_params(1), 3, 0, NULL},
-        {124, "124,1.,0.,0.,0.,0.,1.,0.,0.,0.,0.,1.,0.;", 5, 0, NULL},
-        {124, "124,1.,0.,0.,0.,0.,1.,0.,0.,0.,0.,1.,0.;", 3, 0, NULL},
-    };
-    text = make_iges(e, 3);
-    CHECK(refused(text, "entity 128 (D 1)", "cycle"));
-    free(text);
-}
-
-TEST(iges_malformed_huge_counts)
-{
-    char *text = variant(3, "102,1000000000,3,5;", 0);
-    CHECK(refused(text, "entity 102 (D 7)", "counts larger than the data"));
-    free(text);
-    text = variant(0, "128,100000,100000,1,1,0,0,1,0,0,0.,0.,1.,1.;", 0);
-    CHECK(refused(text, "entity 128 (D 1)", "larger than the data"));
-    free(text);
-    /* A 126 whose point count runs past its data. */
-    text = variant(1, "126,50,3,0,0,1,0,0.,0.,0.,0.,1.,1.,1.,1.;", 0);
-    CHECK(refused(text, "entity 126 (D 3)", "needs"));
-    free(text);
-}
-
-TEST(iges_malformed_hollerith)
-{
-    /* In the parameter data of a colour the surface uses: fatal. */
-    spec e[] = {
-        {128, plane_params(1), 0, -3, NULL},
-        {314, "314,10.,20.,30.,99Habc;", 0, 0, NULL},
-    };
-    char *text = make_iges(e, 2);
-    CHECK(refused(text, "entity 314 (D 3)", "Hollerith"));
-    free(text);
-    /* A number where a Hollerith string follows the wrong way. */
-    text = variant(1, "110,3Habcdef,0.2,0.,0.8,0.5,0.;", 0);
-    CHECK(refused(text, "entity 110 (D 3)", "Hollerith"));
-    free(text);
-    /* In the global section: reported, the file is read. */
-    text = variant(0, NULL, 0);
-    char *g = strstr(text, "1H,,1H;,4Htest,5Ht.igs,;");
-    CHECK(g != NULL);
-    memcpy(g, "1H,,1H;,99Htest,5Ht.igs", 23);
-    sc_scene s;
-    sc_error err;
-    CHECK_INT(read_text(text, &s, &err), SC_OK);
-    CHECK_INT(s.nsurfaces, 1);
-    CHECK_CONTAINS(warnings, "t.igs:2: global section");
-    sc_scene_free(&s);
-    free(text);
-    /* A count with extra digits is still a count, not plain text. */
-    text = variant(0, NULL, 0);
-    g = strstr(text, "1H,,1H;,4Htest,5Ht.igs,;");
-    CHECK(g != NULL);
-    const char *longer = "1H,,1H;,99999HOpen,5Ht.igs,;";
-    memcpy(g, longer, strlen(longer));
-    CHECK_INT(read_text(text, &s, &err), SC_OK);
-    CHECK_INT(s.nsurfaces, 1);
-    CHECK_CONTAINS(warnings, "t.igs:2: global section: a Hollerith string");
-    sc_scene_free(&s);
-    free(text);
-}
-
-TEST(iges_malformed_binary_and_not_iges)
-{
-    char junk[300];
-    unsigned long long state = 7;
-    for (size_t i = 0; i < sizeof junk; i++)
-        junk[i] = (char)(1 + test_rand(&state) * 254);
-    junk[sizeof junk - 1] = 0;
-    sc_scene s;
-    sc_error err;
-    CHECK_INT(read_text(junk, &s, &err), SC_FAIL);
-    CHECK_CONTAINS(error_text(&err), "t.igs:");
-    CHECK_INT(s.nsurfaces, 0);
-    /* Text, but not IGES. */
-    CHECK(refused("v 0 0 0\nv 1 0 0\n", "t.igs:1:", "record of"));
-    char obj[200];
-    memset(obj, 'x', 100);
-    obj[100] = 0;
-    CHECK(refused(obj, "t.igs:1:", "column 73"));
-    CHECK(refused("", "empty", NULL));
-}
-
-TEST(iges_malformed_missing_sections)
-{
-    /* S and G only: no directory. */
-    char *text = variant(0, NULL, 0);
-    char *d = strstr(text, "     128");
-    CHECK(d != NULL);
-    *d = 0;
-    CHECK(refused(text, "no directory section", NULL));
-    free(text);
-    /* No P section: every entity's parameters are missing. */
-    text = variant(0, NULL, 0);
-    char *p = strstr(text, "128,1,1,");
-    CHECK(p != NULL);
-    *p = 0;
-    CHECK(refused(text, "outside the P section", "(D "));
-    free(text);
-    /* Sections out of order. */
-    spec e[] = {{128, plane_params(1), 0, 0, NULL}};
-    text = make_iges(e, 1);
-    char *g = strstr(text, "1H,,");
-    char *line2 = strstr(g, "\n") + 1; /* the first D record */
-    char save[81];
-    memcpy(save, g, 81);
-    memmove(g, line2, 81);
-    memcpy(g + 81, save, 81);
-    CHECK(refused(text, "t.igs:3:", "order"));
-    free(text);
-}
-
-TEST(iges_malformed_degree_and_numbers)
-{
-    /* Degree 3 with 2 x 2 control points. */
-    char *text = variant(0, "128,1,1,3,1,0,0,1,0,0,0.,0.,0.,0.,1.,1.,1.,1.,0.,0.,1.,1.,1.,1.,1.,"
-                            "1.,0.,0.,0.,1.,0.,0.,0.,1.,0.,1.,1.,0.,0.,1.,0.,1.;", 0);
-    CHECK(refused(text, "entity 128 (D 1): degree 3 x 1 needs at least 4 x 2",
-                  position_of(text, "128,1,1,3,1")));
-    free(text);
-    /* Decreasing knots. */
-    text = variant(0, "128,1,1,1,1,0,0,1,0,0,0.,1.,0.,1.,0.,0.,1.,1.,1.,1.,1.,1.,0.,0.,0.,1.,"
-                      "0.,0.,0.,1.,0.,1.,1.,0.,0.,1.,0.,1.;", 0);
-    CHECK(refused(text, "entity 128 (D 1)", "decrease"));
-    free(text);
-    /* A number that overflows. */
-    text = variant(1, "110,1.E999,0.2,0.,0.8,0.5,0.;", 0);
-    CHECK(refused(text, "entity 110 (D 3)", "not a finite number"));
-    free(text);
-    /* An integer beyond what any count or pointer can be. */
-    text = variant(3, "102,2000000000,3,5;", 0);
-    CHECK(refused(text, "entity 102 (D 7): parameter 1: integer 2000000000 is out of range",
-                  position_of(text, "102,2000000000")));
-    free(text);
-    /* Zero weight on a rational surface. */
-    text = variant(0, "128,1,1,1,1,0,0,0,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,0.,1.,1.,0.,0.,0.,1.,"
-                      "0.,0.,0.,1.,0.,1.,1.,0.,0.,1.,0.,1.;", 0);
-    CHECK(refused(text, "entity 128 (D 1)", "weight 1"));
-    free(text);
-    /* A loop pointer to the wrong kind of entity. */
-    text = variant(5, "144,1,1,0,7;", 0);
-    CHECK(refused(text, "entity 144 (D 11)", "expected a 142"));
-    free(text);
 }
 
 /* Colour number 0 in directory field 13 means "none assigned": such
