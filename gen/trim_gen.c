@@ -2,7 +2,7 @@
  * (u, v) kept by the trim loops? The parity of the crossings of the ray
  * from (u, v) towards +u with the loops' pieces decides. The pieces are
  * v-monotone rational Bézier curves with half-open v ranges
- * [v_lo, v_hi) (runtime/trim_pack.c), so a ray through a shared end point,
+ * [v_lo, v_hi) (runtime/prepare/trim_pack.c), so a ray through a shared end point,
  * an extremum or along a horizontal run counts right, and each piece is
  * crossed at most once.
  *
@@ -42,7 +42,7 @@
  * skipped whole.
  *
  * The accelerated method (fastN) reads the grid cell of the point
- * (runtime/trim_pack.c): its parity and few entries decide most points by
+ * (runtime/prepare/trim_pack.c): its parity and few entries decide most points by
  * comparisons alone. llvmpipe masks rather than skips code that no pixel of
  * a SIMD group needs, so what counts is the code on the path: the clipping
  * code appears once, after the scan, never inside a loop that every pixel

@@ -1,7 +1,7 @@
 /* test_trim_e2e.c — exact trimming end to end: the example trim scenes
  * rendered on real Mesa (llvmpipe) through EGL and OSMesa with every trim
  * method, each image compared with the CPU reference, whose trimming is an
- * independent double-precision classification (runtime/trim.c). Also the
+ * independent double-precision classification (runtime/model/trim.c). Also the
  * render options that choose the method. One context per backend for the
  * whole run; references are cached in the run's temporary folder. */
 #include "test.h"

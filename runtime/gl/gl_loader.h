@@ -1,6 +1,6 @@
 /* gl_loader.h — the OpenGL function table of one context. The entries are
  * generated from the Khronos registry's core-profile header (see
- * runtime/gl_functions.awk) and resolved through the GetProcAddress of the
+ * runtime/gl/gl_functions.awk) and resolved through the GetProcAddress of the
  * backend that made the context current (EGL or OSMesa), so the library
  * never links libGL and works the same under both backends. Calls go
  * through the table: gl->DrawArrays(...). */
