@@ -201,12 +201,10 @@ static void constant_text(const scg_inst *in, char *buf, size_t size)
 }
 
 /* Values printed where they are used rather than held in a local: leaves,
- * components, and the loads that `load_in_place` marks. */
+ * components (SCG_GLSL_IN_PLACE), and the loads that `load_in_place` marks. */
 static int printed_in_place(const scg_program *prog, const unsigned char *loads, scg_value v)
 {
-    scg_op op = prog->insts[v].op;
-    return op == SCG_OP_CONST || op == SCG_OP_INPUT || op == SCG_OP_UNIFORM || op == SCG_OP_COMP ||
-           loads[v];
+    return scg_op_infos[prog->insts[v].op].glsl == SCG_GLSL_IN_PLACE || loads[v];
 }
 
 /* Marks the loads that can be read as their variable at every use: not an
@@ -222,7 +220,7 @@ static unsigned char *load_in_place(const scg_program *prog)
     int *last_use = sc_alloc((size_t)prog->count, sizeof *last_use);
     for (int i = prog->count - 1; i > 0; i--) {
         const scg_inst *in = &prog->insts[i];
-        int use = in->op == SCG_OP_COMP ? last_use[i] : i;
+        int use = scg_op_infos[in->op].glsl == SCG_GLSL_IN_PLACE ? last_use[i] : i;
         for (int k = 0; k < 4; k++)
             if (in->arg[k] && last_use[in->arg[k]] < use)
                 last_use[in->arg[k]] = use;
@@ -322,38 +320,6 @@ static void indent(scg_text *out, int depth)
         scg_text_append(out, "    ");
 }
 
-static const char *binary_symbol(scg_op op)
-{
-    switch (op) {
-    case SCG_OP_ADD: return "+";
-    case SCG_OP_SUB: return "-";
-    case SCG_OP_MUL: return "*";
-    case SCG_OP_DIV: return "/";
-    case SCG_OP_LT: return "<";
-    case SCG_OP_LE: return "<=";
-    case SCG_OP_EQ: return "==";
-    case SCG_OP_NE: return "!=";
-    case SCG_OP_AND: return "&&";
-    case SCG_OP_OR: return "||";
-    default: return NULL;
-    }
-}
-
-static const char *call_name(scg_op op)
-{
-    switch (op) {
-    case SCG_OP_MIN: return "min";
-    case SCG_OP_MAX: return "max";
-    case SCG_OP_ABS: return "abs";
-    case SCG_OP_SQRT: return "sqrt";
-    case SCG_OP_FLOOR: return "floor";
-    case SCG_OP_DOT: return "dot";
-    case SCG_OP_CROSS: return "cross";
-    case SCG_OP_LENGTH: return "length";
-    default: return NULL;
-    }
-}
-
 /* "0.0", "vec3(0.0)", "0", "false": what an uninitialised variable holds. */
 static const char *zero_of(scg_type type)
 {
@@ -380,27 +346,13 @@ static int expression(const scg_program *prog, const unsigned char *loads, int i
         operand(prog, loads, in->arg[1], b, sizeof b);
     if (in->arg[2])
         operand(prog, loads, in->arg[2], c, sizeof c);
-    const char *symbol = binary_symbol(in->op), *call = call_name(in->op);
+    const scg_op_info *info = &scg_op_infos[in->op];
     switch (in->op) {
     case SCG_OP_FETCH: {
         const scg_slot_info *tex = scg_texture_info((scg_texture)in->slot);
         scg_text_printf(out, "texelFetch(%s, %s)%s", tex->name, a, tex->components == 1 ? ".r" : "");
         return SC_OK;
     }
-    case SCG_OP_NEG:
-        scg_text_printf(out, "-%s", a);
-        return SC_OK;
-    case SCG_OP_NOT:
-        scg_text_printf(out, "!%s", a);
-        return SC_OK;
-    case SCG_OP_MIN:
-    case SCG_OP_MAX:
-        /* GLSL has min(vecN, float) but not min(float, vecN). */
-        if (scg_type_width(prog->insts[in->arg[0]].type) < scg_type_width(in->type))
-            scg_text_printf(out, "%s(%s, %s)", call, b, a);
-        else
-            scg_text_printf(out, "%s(%s, %s)", call, a, b);
-        return SC_OK;
     case SCG_OP_VEC: {
         char swz[5], source[160];
         scg_value from;
@@ -423,12 +375,6 @@ static int expression(const scg_program *prog, const unsigned char *loads, int i
     case SCG_OP_SELECT:
         scg_text_printf(out, "%s ? %s : %s", a, b, c);
         return SC_OK;
-    case SCG_OP_I2F:
-        scg_text_printf(out, "float(%s)", a);
-        return SC_OK;
-    case SCG_OP_F2I:
-        scg_text_printf(out, "int(%s)", a);
-        return SC_OK;
     case SCG_OP_LOAD:
         if (in->arg[1])
             scg_text_printf(out, "%s[%s]", a, b);
@@ -438,13 +384,24 @@ static int expression(const scg_program *prog, const unsigned char *loads, int i
     default:
         break;
     }
-    if (symbol) {
-        scg_text_printf(out, "%s %s %s", a, symbol, b);
+    switch (info->glsl) {
+    case SCG_GLSL_INFIX:
+        scg_text_printf(out, "%s %s %s", a, info->spelling, b);
         return SC_OK;
-    }
-    if (call) {
-        scg_text_printf(out, in->arg[1] ? "%s(%s, %s)" : "%s(%s)", call, a, b);
+    case SCG_GLSL_PREFIX:
+        scg_text_printf(out, "%s%s", info->spelling, a);
         return SC_OK;
+    case SCG_GLSL_CALL:
+        /* GLSL has min(vecN, float) but not min(float, vecN): a broadcast
+         * float goes second where the operands commute. */
+        if (in->arg[1] && (info->flags & SCG_OPF_COMM) &&
+            scg_type_width(prog->insts[in->arg[0]].type) < scg_type_width(in->type))
+            scg_text_printf(out, "%s(%s, %s)", info->spelling, b, a);
+        else
+            scg_text_printf(out, in->arg[1] ? "%s(%s, %s)" : "%s(%s)", info->spelling, a, b);
+        return SC_OK;
+    default:
+        break;
     }
     return sc_fail(err, NULL, 0, "emitter: instruction %d (%s) has no GLSL form", i,
                    scg_op_name(in->op));

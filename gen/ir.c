@@ -1,6 +1,7 @@
-/* ir.c — the IR's core: programs, the builder with its typing rules, the
- * validator that runs after every stage, the listing behind --dump-ir and
- * the compaction that passes use to drop what they removed. */
+/* ir.c — the IR's core: the op table (built from ops.h), programs, the
+ * builder with its typing rules, the validator that runs after every stage,
+ * the listing behind --dump-ir and the compaction that passes use to drop
+ * what they removed. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,22 +27,48 @@ const char *scg_type_name(scg_type t)
 
 static bool is_float_type(scg_type t) { return t >= SCG_FLOAT && t <= SCG_VEC4; }
 
-static const char *const op_names[SCG_OP_COUNT] = {
-    [SCG_OP_NOP] = "nop", [SCG_OP_CONST] = "const", [SCG_OP_INPUT] = "input",
-    [SCG_OP_UNIFORM] = "uniform", [SCG_OP_FETCH] = "fetch", [SCG_OP_ADD] = "add",
-    [SCG_OP_SUB] = "sub", [SCG_OP_MUL] = "mul", [SCG_OP_DIV] = "div", [SCG_OP_NEG] = "neg",
-    [SCG_OP_MIN] = "min", [SCG_OP_MAX] = "max", [SCG_OP_ABS] = "abs", [SCG_OP_SQRT] = "sqrt",
-    [SCG_OP_FLOOR] = "floor", [SCG_OP_DOT] = "dot", [SCG_OP_CROSS] = "cross",
-    [SCG_OP_LENGTH] = "length", [SCG_OP_VEC] = "vec", [SCG_OP_COMP] = "comp",
-    [SCG_OP_LT] = "lt", [SCG_OP_LE] = "le", [SCG_OP_EQ] = "eq", [SCG_OP_NE] = "ne",
-    [SCG_OP_AND] = "and", [SCG_OP_OR] = "or", [SCG_OP_NOT] = "not", [SCG_OP_SELECT] = "select",
-    [SCG_OP_I2F] = "i2f", [SCG_OP_F2I] = "f2i", [SCG_OP_VAR] = "var", [SCG_OP_LOAD] = "load",
-    [SCG_OP_STORE] = "store", [SCG_OP_IF] = "if", [SCG_OP_ELSE] = "else",
-    [SCG_OP_ENDIF] = "endif", [SCG_OP_LOOP] = "loop", [SCG_OP_BREAK] = "break",
-    [SCG_OP_ENDLOOP] = "endloop", [SCG_OP_OUTPUT] = "output",
+/* The flags column of ops.h names flags without their prefix. */
+#define PURE SCG_OPF_PURE
+#define EVAL SCG_OPF_EVAL
+#define COMM SCG_OPF_COMM
+#define EFFECT SCG_OPF_EFFECT
+#define OPEN SCG_OPF_OPEN
+#define CLOSE SCG_OPF_CLOSE
+#define VAR_A SCG_OPF_VAR_A
+const scg_op_info scg_op_infos[SCG_OP_COUNT] = {
+#define X(name, mnemonic, min_args, max_args, args, result, flags, glsl, spelling)              \
+    [SCG_OP_##name] = {mnemonic,           min_args, max_args,      SCG_ARG_##args,            \
+                       SCG_RESULT_##result, flags,   SCG_GLSL_##glsl, spelling},
+#include "ops.h"
+#undef X
 };
+#undef PURE
+#undef EVAL
+#undef COMM
+#undef EFFECT
+#undef OPEN
+#undef CLOSE
+#undef VAR_A
 
-const char *scg_op_name(scg_op op) { return (unsigned)op < SCG_OP_COUNT ? op_names[op] : "?"; }
+const char *scg_op_name(scg_op op)
+{
+    return (unsigned)op < SCG_OP_COUNT ? scg_op_infos[op].name : "?";
+}
+
+scg_type scg_op_result_type(scg_op op, scg_type ta, scg_type tb)
+{
+    switch (scg_op_infos[op].result) {
+    case SCG_RESULT_BOOL: return SCG_BOOL;
+    case SCG_RESULT_INT: return SCG_INT;
+    case SCG_RESULT_FLOAT: return SCG_FLOAT;
+    case SCG_RESULT_VEC3: return SCG_VEC3;
+    case SCG_RESULT_AS_A: return ta;
+    case SCG_RESULT_AS_B: return tb;
+    /* GLSL's rule for binary arithmetic: a float mixed with a vector broadcasts. */
+    case SCG_RESULT_BROADCAST: return ta == SCG_FLOAT && tb > SCG_FLOAT ? tb : ta;
+    default: return SCG_VOID;
+    }
+}
 
 /* Types of the layout's slots, in IR terms. */
 static const scg_type input_types[SCG_INPUT_COUNT] = {
@@ -120,21 +147,16 @@ static scg_type type_of(scg_builder *b, scg_value v)
     return v > 0 && v < b->prog->count ? b->prog->insts[v].type : SCG_VOID;
 }
 
-/* GLSL's rule for binary arithmetic: a float mixed with a vector broadcasts. */
-static scg_type binary_type(scg_builder *b, scg_value x, scg_value y)
+/* An op whose type its operands decide (scg_op_result_type). */
+static scg_value typed3(scg_builder *b, scg_op op, scg_value x, scg_value y, scg_value z)
 {
-    scg_type tx = type_of(b, x), ty = type_of(b, y);
-    return tx == SCG_FLOAT && ty > SCG_FLOAT ? ty : tx;
+    scg_type t = scg_op_result_type(op, type_of(b, x), type_of(b, y));
+    return scg_emit(b, op, t, x, y, z, 0);
 }
 
-static scg_value binary(scg_builder *b, scg_op op, scg_value x, scg_value y)
+static scg_value typed(scg_builder *b, scg_op op, scg_value x, scg_value y)
 {
-    return scg_emit(b, op, binary_type(b, x, y), x, y, 0, 0);
-}
-
-static scg_value unary(scg_builder *b, scg_op op, scg_value x)
-{
-    return scg_emit(b, op, type_of(b, x), x, 0, 0, 0);
+    return typed3(b, op, x, y, 0);
 }
 
 scg_value scg_const_f(scg_builder *b, float x) { return scg_const_vec(b, 1, &x); }
@@ -183,29 +205,22 @@ void scg_output(scg_builder *b, scg_output_slot slot, scg_value v)
     scg_emit(b, SCG_OP_OUTPUT, SCG_VOID, v, 0, 0, slot);
 }
 
-scg_value scg_add(scg_builder *b, scg_value x, scg_value y) { return binary(b, SCG_OP_ADD, x, y); }
-scg_value scg_sub(scg_builder *b, scg_value x, scg_value y) { return binary(b, SCG_OP_SUB, x, y); }
-scg_value scg_mul(scg_builder *b, scg_value x, scg_value y) { return binary(b, SCG_OP_MUL, x, y); }
-scg_value scg_div(scg_builder *b, scg_value x, scg_value y) { return binary(b, SCG_OP_DIV, x, y); }
-scg_value scg_min(scg_builder *b, scg_value x, scg_value y) { return binary(b, SCG_OP_MIN, x, y); }
-scg_value scg_max(scg_builder *b, scg_value x, scg_value y) { return binary(b, SCG_OP_MAX, x, y); }
-scg_value scg_neg(scg_builder *b, scg_value x) { return unary(b, SCG_OP_NEG, x); }
-scg_value scg_abs(scg_builder *b, scg_value x) { return unary(b, SCG_OP_ABS, x); }
-scg_value scg_sqrt(scg_builder *b, scg_value x) { return unary(b, SCG_OP_SQRT, x); }
-scg_value scg_floor(scg_builder *b, scg_value x) { return unary(b, SCG_OP_FLOOR, x); }
-
-scg_value scg_dot(scg_builder *b, scg_value x, scg_value y)
-{
-    return scg_emit(b, SCG_OP_DOT, SCG_FLOAT, x, y, 0, 0);
-}
+scg_value scg_add(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_ADD, x, y); }
+scg_value scg_sub(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_SUB, x, y); }
+scg_value scg_mul(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_MUL, x, y); }
+scg_value scg_div(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_DIV, x, y); }
+scg_value scg_min(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_MIN, x, y); }
+scg_value scg_max(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_MAX, x, y); }
+scg_value scg_neg(scg_builder *b, scg_value x) { return typed(b, SCG_OP_NEG, x, 0); }
+scg_value scg_abs(scg_builder *b, scg_value x) { return typed(b, SCG_OP_ABS, x, 0); }
+scg_value scg_sqrt(scg_builder *b, scg_value x) { return typed(b, SCG_OP_SQRT, x, 0); }
+scg_value scg_floor(scg_builder *b, scg_value x) { return typed(b, SCG_OP_FLOOR, x, 0); }
+scg_value scg_dot(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_DOT, x, y); }
 scg_value scg_cross(scg_builder *b, scg_value x, scg_value y)
 {
-    return scg_emit(b, SCG_OP_CROSS, SCG_VEC3, x, y, 0, 0);
+    return typed(b, SCG_OP_CROSS, x, y);
 }
-scg_value scg_length(scg_builder *b, scg_value x)
-{
-    return scg_emit(b, SCG_OP_LENGTH, SCG_FLOAT, x, 0, 0, 0);
-}
+scg_value scg_length(scg_builder *b, scg_value x) { return typed(b, SCG_OP_LENGTH, x, 0); }
 
 scg_value scg_lerp(scg_builder *b, scg_value x, scg_value y, scg_value t)
 {
@@ -242,63 +257,41 @@ scg_value scg_xyz(scg_builder *b, scg_value v)
     return scg_vec3(b, x, y, z);
 }
 
-static scg_value compare(scg_builder *b, scg_op op, scg_value x, scg_value y)
-{
-    return scg_emit(b, op, SCG_BOOL, x, y, 0, 0);
-}
-scg_value scg_lt(scg_builder *b, scg_value x, scg_value y) { return compare(b, SCG_OP_LT, x, y); }
-scg_value scg_le(scg_builder *b, scg_value x, scg_value y) { return compare(b, SCG_OP_LE, x, y); }
-scg_value scg_eq(scg_builder *b, scg_value x, scg_value y) { return compare(b, SCG_OP_EQ, x, y); }
-scg_value scg_ne(scg_builder *b, scg_value x, scg_value y) { return compare(b, SCG_OP_NE, x, y); }
-scg_value scg_and(scg_builder *b, scg_value x, scg_value y) { return compare(b, SCG_OP_AND, x, y); }
-scg_value scg_or(scg_builder *b, scg_value x, scg_value y) { return compare(b, SCG_OP_OR, x, y); }
-scg_value scg_not(scg_builder *b, scg_value x)
-{
-    return scg_emit(b, SCG_OP_NOT, SCG_BOOL, x, 0, 0, 0);
-}
+scg_value scg_lt(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_LT, x, y); }
+scg_value scg_le(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_LE, x, y); }
+scg_value scg_eq(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_EQ, x, y); }
+scg_value scg_ne(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_NE, x, y); }
+scg_value scg_and(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_AND, x, y); }
+scg_value scg_or(scg_builder *b, scg_value x, scg_value y) { return typed(b, SCG_OP_OR, x, y); }
+scg_value scg_not(scg_builder *b, scg_value x) { return typed(b, SCG_OP_NOT, x, 0); }
 scg_value scg_select(scg_builder *b, scg_value cond, scg_value x, scg_value y)
 {
-    return scg_emit(b, SCG_OP_SELECT, type_of(b, x), cond, x, y, 0);
+    return typed3(b, SCG_OP_SELECT, cond, x, y);
 }
-scg_value scg_i2f(scg_builder *b, scg_value x)
-{
-    return scg_emit(b, SCG_OP_I2F, SCG_FLOAT, x, 0, 0, 0);
-}
-scg_value scg_f2i(scg_builder *b, scg_value x)
-{
-    return scg_emit(b, SCG_OP_F2I, SCG_INT, x, 0, 0, 0);
-}
+scg_value scg_i2f(scg_builder *b, scg_value x) { return typed(b, SCG_OP_I2F, x, 0); }
+scg_value scg_f2i(scg_builder *b, scg_value x) { return typed(b, SCG_OP_F2I, x, 0); }
 
 scg_value scg_var(scg_builder *b, scg_type type, int array_length, scg_value init)
 {
     return scg_emit(b, SCG_OP_VAR, type, init, 0, 0, array_length);
 }
-scg_value scg_load(scg_builder *b, scg_value var)
-{
-    return scg_emit(b, SCG_OP_LOAD, type_of(b, var), var, 0, 0, 0);
-}
+scg_value scg_load(scg_builder *b, scg_value var) { return typed(b, SCG_OP_LOAD, var, 0); }
 scg_value scg_load_at(scg_builder *b, scg_value var, scg_value index)
 {
-    return scg_emit(b, SCG_OP_LOAD, type_of(b, var), var, index, 0, 0);
+    return typed(b, SCG_OP_LOAD, var, index);
 }
-void scg_store(scg_builder *b, scg_value var, scg_value v)
-{
-    scg_emit(b, SCG_OP_STORE, SCG_VOID, var, v, 0, 0);
-}
+void scg_store(scg_builder *b, scg_value var, scg_value v) { typed(b, SCG_OP_STORE, var, v); }
 void scg_store_at(scg_builder *b, scg_value var, scg_value index, scg_value v)
 {
-    scg_emit(b, SCG_OP_STORE, SCG_VOID, var, v, index, 0);
+    typed3(b, SCG_OP_STORE, var, v, index);
 }
 
-void scg_if(scg_builder *b, scg_value cond) { scg_emit(b, SCG_OP_IF, SCG_VOID, cond, 0, 0, 0); }
-void scg_else(scg_builder *b) { scg_emit(b, SCG_OP_ELSE, SCG_VOID, 0, 0, 0, 0); }
-void scg_endif(scg_builder *b) { scg_emit(b, SCG_OP_ENDIF, SCG_VOID, 0, 0, 0, 0); }
-scg_value scg_loop(scg_builder *b, scg_value count)
-{
-    return scg_emit(b, SCG_OP_LOOP, SCG_INT, count, 0, 0, 0);
-}
-void scg_break(scg_builder *b) { scg_emit(b, SCG_OP_BREAK, SCG_VOID, 0, 0, 0, 0); }
-void scg_endloop(scg_builder *b) { scg_emit(b, SCG_OP_ENDLOOP, SCG_VOID, 0, 0, 0, 0); }
+void scg_if(scg_builder *b, scg_value cond) { typed(b, SCG_OP_IF, cond, 0); }
+void scg_else(scg_builder *b) { typed(b, SCG_OP_ELSE, 0, 0); }
+void scg_endif(scg_builder *b) { typed(b, SCG_OP_ENDIF, 0, 0); }
+scg_value scg_loop(scg_builder *b, scg_value count) { return typed(b, SCG_OP_LOOP, count, 0); }
+void scg_break(scg_builder *b) { typed(b, SCG_OP_BREAK, 0, 0); }
+void scg_endloop(scg_builder *b) { typed(b, SCG_OP_ENDLOOP, 0, 0); }
 
 /* ---- validation ---- */
 
@@ -310,36 +303,49 @@ static int invalid(sc_error *err, const scg_program *p, int i, const char *what)
                        scg_op_name(i < p->count ? p->insts[i].op : SCG_OP_NOP), what);
 }
 
-/* Operand count each op takes (the VEC op takes 2–4 by type). */
-static int operand_count(const scg_inst *in)
+/* Whether a value of type t may be an operand of an op of class c. */
+static bool in_class(scg_type t, scg_arg_class c)
 {
-    switch (in->op) {
-    case SCG_OP_CONST: case SCG_OP_INPUT: case SCG_OP_UNIFORM: case SCG_OP_ELSE:
-    case SCG_OP_ENDIF: case SCG_OP_BREAK: case SCG_OP_ENDLOOP: case SCG_OP_NOP:
-        return 0;
-    case SCG_OP_ADD: case SCG_OP_SUB: case SCG_OP_MUL: case SCG_OP_DIV: case SCG_OP_MIN:
-    case SCG_OP_MAX: case SCG_OP_DOT: case SCG_OP_CROSS: case SCG_OP_LT: case SCG_OP_LE:
-    case SCG_OP_EQ: case SCG_OP_NE: case SCG_OP_AND: case SCG_OP_OR:
-        return 2;
-    case SCG_OP_SELECT:
-        return 3;
-    case SCG_OP_VEC:
-        return scg_type_width(in->type);
-    case SCG_OP_LOAD: case SCG_OP_STORE: case SCG_OP_VAR:
-        return -1; /* checked by hand */
-    default:
-        return 1;
+    switch (c) {
+    case SCG_ARG_NUM: return t == SCG_INT || is_float_type(t);
+    case SCG_ARG_FLOATS: return is_float_type(t);
+    case SCG_ARG_SCALAR: return t == SCG_INT || t == SCG_FLOAT;
+    case SCG_ARG_VECTOR: return t >= SCG_VEC2 && t <= SCG_VEC4;
+    case SCG_ARG_BOOL: return t == SCG_BOOL;
+    case SCG_ARG_INT: return t == SCG_INT;
+    case SCG_ARG_FLOAT: return t == SCG_FLOAT;
+    case SCG_ARG_VEC3: return t == SCG_VEC3;
+    default: return true;
     }
 }
 
 /* What is wrong with the types, slot or operands of one instruction, or
- * NULL. Operands are known to be defined before it. */
+ * NULL. Operands are known to be defined before it and present as its row
+ * of the op table asks. The table's classes and result rules check most
+ * ops; what they cannot say (slots, vecN, select, variables) is checked by
+ * hand below. */
 static const char *type_error(const scg_program *p, const scg_inst *in)
 {
-    scg_type t = in->type;
-    scg_type ta = in->arg[0] ? p->insts[in->arg[0]].type : SCG_VOID;
-    scg_type tb = in->arg[1] ? p->insts[in->arg[1]].type : SCG_VOID;
-    scg_type tc = in->arg[2] ? p->insts[in->arg[2]].type : SCG_VOID;
+    const scg_op_info *info = &scg_op_infos[in->op];
+    scg_type t = in->type, at[4];
+    for (int k = 0; k < 4; k++)
+        at[k] = in->arg[k] ? p->insts[in->arg[k]].type : SCG_VOID;
+    scg_type ta = at[0], tb = at[1], tc = at[2];
+    if ((unsigned)t > SCG_VEC4)
+        return "bad result type";
+    if (info->args != SCG_ARG_ANY)
+        for (int k = 0; k < 4 && in->arg[k]; k++) {
+            if (!in_class(at[k], info->args))
+                return "operand of the wrong type";
+            bool broadcast = info->result == SCG_RESULT_BROADCAST && k == 1 &&
+                             ((ta == SCG_FLOAT && tb >= SCG_VEC2) ||
+                              (tb == SCG_FLOAT && ta >= SCG_VEC2));
+            if (at[k] != ta && !broadcast)
+                return "operand types do not match";
+        }
+    if (info->result != SCG_RESULT_DECLARED && info->result != SCG_RESULT_SLOT &&
+        t != scg_op_result_type(in->op, ta, tb))
+        return "result type does not follow from the operands";
     switch (in->op) {
     case SCG_OP_CONST:
         if (t == SCG_VOID)
@@ -350,107 +356,46 @@ static const char *type_error(const scg_program *p, const scg_inst *in)
             return "bad input slot or type";
         break;
     case SCG_OP_UNIFORM:
-        if ((unsigned)in->slot >= SCG_UNIFORM_COUNT || t != SCG_FLOAT)
-            return "bad uniform slot or type";
+        if ((unsigned)in->slot >= SCG_UNIFORM_COUNT)
+            return "bad uniform slot";
         break;
     case SCG_OP_FETCH:
-        if ((unsigned)in->slot >= SCG_TEXTURE_COUNT || ta != SCG_INT ||
+        if ((unsigned)in->slot >= SCG_TEXTURE_COUNT ||
             t != (in->slot == SCG_TEX_KNOTS ? SCG_FLOAT : SCG_VEC4))
-            return "bad texture, index type or result type";
+            return "bad texture or result type";
         break;
-    case SCG_OP_ADD: case SCG_OP_SUB: case SCG_OP_MUL: case SCG_OP_DIV: case SCG_OP_MIN:
-    case SCG_OP_MAX: {
-        bool ok = (ta == tb && t == ta && (is_float_type(t) || t == SCG_INT)) ||
-                  (is_float_type(t) && t > SCG_FLOAT &&
-                   ((ta == t && tb == SCG_FLOAT) || (ta == SCG_FLOAT && tb == t)));
-        if (!ok)
-            return "operand types do not match";
-        break;
-    }
-    case SCG_OP_NEG: case SCG_OP_ABS:
-        if (t != ta || !(is_float_type(t) || t == SCG_INT))
-            return "operand must be int or float type";
-        break;
-    case SCG_OP_SQRT: case SCG_OP_FLOOR:
-        if (t != ta || !is_float_type(t))
-            return "operand must be a float type";
-        break;
-    case SCG_OP_DOT:
-        if (t != SCG_FLOAT || ta != tb || !is_float_type(ta))
-            return "dot of different or non-float types";
-        break;
-    case SCG_OP_CROSS:
-        if (t != SCG_VEC3 || ta != SCG_VEC3 || tb != SCG_VEC3)
-            return "cross needs two vec3";
-        break;
-    case SCG_OP_LENGTH:
-        if (t != SCG_FLOAT || !is_float_type(ta))
-            return "length of a non-float type";
-        break;
-    case SCG_OP_VEC: {
-        int w = scg_type_width(t);
+    case SCG_OP_VEC:
         if (t < SCG_VEC2)
             return "vec must build vec2, vec3 or vec4";
-        for (int k = 0; k < w; k++)
-            if (p->insts[in->arg[k]].type != SCG_FLOAT)
-                return "vec components must be floats";
+        for (int k = 0; k < 4; k++)
+            if ((k < scg_type_width(t)) != (in->arg[k] != 0))
+                return "vecN takes N components";
         break;
-    }
     case SCG_OP_COMP:
-        if (t != SCG_FLOAT || ta < SCG_VEC2 || in->slot < 0 || in->slot >= scg_type_width(ta))
+        if (in->slot < 0 || in->slot >= scg_type_width(ta))
             return "component out of range";
         break;
-    case SCG_OP_LT: case SCG_OP_LE: case SCG_OP_EQ: case SCG_OP_NE:
-        if (t != SCG_BOOL || ta != tb || (ta != SCG_FLOAT && ta != SCG_INT))
-            return "comparison of two floats or two ints";
-        break;
-    case SCG_OP_AND: case SCG_OP_OR:
-        if (t != SCG_BOOL || ta != SCG_BOOL || tb != SCG_BOOL)
-            return "logic on non-bool";
-        break;
-    case SCG_OP_NOT:
-        if (t != SCG_BOOL || ta != SCG_BOOL)
-            return "not of non-bool";
-        break;
     case SCG_OP_SELECT:
-        if (ta != SCG_BOOL || tb != tc || t != tb)
+        if (ta != SCG_BOOL || tb != tc)
             return "select needs a bool and two values of one type";
         break;
-    case SCG_OP_I2F:
-        if (t != SCG_FLOAT || ta != SCG_INT)
-            return "i2f of non-int";
-        break;
-    case SCG_OP_F2I:
-        if (t != SCG_INT || ta != SCG_FLOAT)
-            return "f2i of non-float";
-        break;
     case SCG_OP_VAR:
-        if (t == SCG_VOID || in->slot < 0 || in->arg[1] || in->arg[2] ||
-            (in->arg[0] && (in->slot > 0 || ta != t)))
+        if (t == SCG_VOID || in->slot < 0 || (in->arg[0] && (in->slot > 0 || ta != t)))
             return "bad variable declaration";
         break;
     case SCG_OP_LOAD: {
         const scg_inst *var = &p->insts[in->arg[0]];
-        if (!in->arg[0] || in->arg[2] || t != var->type ||
-            (var->slot > 0) != (in->arg[1] != 0) || (in->arg[1] && tb != SCG_INT))
-            return "bad load (type, or index on a non-array)";
+        if ((var->slot > 0) != (in->arg[1] != 0) || (in->arg[1] && tb != SCG_INT))
+            return "bad load (index on a non-array, or not an int)";
         break;
     }
     case SCG_OP_STORE: {
         const scg_inst *var = &p->insts[in->arg[0]];
-        if (!in->arg[0] || !in->arg[1] || tb != var->type ||
-            (var->slot > 0) != (in->arg[2] != 0) || (in->arg[2] && tc != SCG_INT))
+        if (tb != var->type || (var->slot > 0) != (in->arg[2] != 0) ||
+            (in->arg[2] && tc != SCG_INT))
             return "bad store (type, or index on a non-array)";
         break;
     }
-    case SCG_OP_IF:
-        if (ta != SCG_BOOL)
-            return "if condition is not bool";
-        break;
-    case SCG_OP_LOOP:
-        if (ta != SCG_INT || t != SCG_INT)
-            return "loop count is not int";
-        break;
     case SCG_OP_OUTPUT:
         if ((unsigned)in->slot >= SCG_OUTPUT_COUNT || ta != output_types[in->slot])
             return "bad output slot or type";
@@ -458,9 +403,6 @@ static const char *type_error(const scg_program *p, const scg_inst *in)
     default:
         break;
     }
-    if (in->op != SCG_OP_VAR && in->op != SCG_OP_CONST && t != SCG_VOID && t != SCG_BOOL &&
-        t != SCG_INT && !is_float_type(t))
-        return "bad result type";
     return NULL;
 }
 
@@ -483,7 +425,7 @@ int scg_validate(const scg_program *p, sc_error *err)
         const scg_inst *in = &p->insts[i];
         if ((unsigned)in->op >= SCG_OP_COUNT || in->op == SCG_OP_NOP)
             FAIL(i, "unknown or removed instruction");
-        int nops = operand_count(in);
+        const scg_op_info *info = &scg_op_infos[in->op];
         /* Operands defined before, visible here, and values (not variables
          * unless the op takes a variable). */
         for (int k = 0; k < 4; k++) {
@@ -494,16 +436,18 @@ int scg_validate(const scg_program *p, sc_error *err)
                 FAIL(i, "operand not defined before its use");
             if (!open[block_of[v]])
                 FAIL(i, "operand defined in a block that is already closed");
-            bool var_operand = k == 0 && (in->op == SCG_OP_LOAD || in->op == SCG_OP_STORE);
+            bool var_operand = k == 0 && (info->flags & SCG_OPF_VAR_A);
             if ((p->insts[v].op == SCG_OP_VAR) != var_operand)
                 FAIL(i, var_operand ? "operand a is not a variable" : "a variable used as a value");
             if (p->insts[v].type == SCG_VOID)
                 FAIL(i, "operand defines no value");
         }
-        if (nops >= 0)
-            for (int k = 0; k < 4; k++)
-                if ((k < nops) != (in->arg[k] != 0))
-                    FAIL(i, k < nops ? "missing operand" : "extra operand");
+        for (int k = 0; k < 4; k++) {
+            if (k < info->min_args && !in->arg[k])
+                FAIL(i, "missing operand");
+            if (k >= info->max_args && in->arg[k])
+                FAIL(i, "extra operand");
+        }
         const char *type_problem = type_error(p, in);
         if (type_problem)
             FAIL(i, type_problem);
@@ -578,13 +522,14 @@ void scg_dump_ir(FILE *f, const scg_program *p)
     int indent = 1;
     for (int i = 1; i < p->count; i++) {
         const scg_inst *in = &p->insts[i];
-        if (in->op == SCG_OP_ELSE || in->op == SCG_OP_ENDIF || in->op == SCG_OP_ENDLOOP)
+        if (scg_op_has(in->op, SCG_OPF_CLOSE))
             indent--;
         fprintf(f, "%*s", 2 * indent, "");
+        if (scg_op_has(in->op, SCG_OPF_OPEN))
+            indent++;
         switch (in->op) {
         case SCG_OP_ELSE:
             fprintf(f, "} else {\n");
-            indent++;
             continue;
         case SCG_OP_ENDIF:
         case SCG_OP_ENDLOOP:
@@ -594,7 +539,6 @@ void scg_dump_ir(FILE *f, const scg_program *p)
             fprintf(f, "if ");
             print_value(f, p, in->arg[0]);
             fprintf(f, " {\n");
-            indent++;
             continue;
         case SCG_OP_BREAK:
             fprintf(f, "break\n");
@@ -656,10 +600,8 @@ void scg_dump_ir(FILE *f, const scg_program *p)
             }
             break;
         }
-        if (in->op == SCG_OP_LOOP) {
+        if (in->op == SCG_OP_LOOP)
             fprintf(f, " {");
-            indent++;
-        }
         fprintf(f, "\n");
     }
 }

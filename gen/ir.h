@@ -45,79 +45,88 @@ int scg_type_width(scg_type t);
 /* GLSL spelling: "bool", "int", "float", "vec2", …, "void". */
 const char *scg_type_name(scg_type t);
 
-/* The node kinds. Operands are a, b, c, d (scg_inst.arg[0..3]); "slot" and
- * "imm" are the instruction's immediate fields. Unless said otherwise the
- * result type is the operands' type (with float broadcast to the vector). */
+/* The node kinds, one per row of the op table (ops.h), where each op's
+ * operands, types, flags and GLSL form are given and commented. */
 typedef enum scg_op {
-    SCG_OP_NOP = 0,  /* removed by a pass; never present after compaction */
-
-    /* leaves */
-    SCG_OP_CONST,    /* imm.f[0..w-1] for float types, imm.i for int/bool */
-    SCG_OP_INPUT,    /* fragment-stage input number `slot` (scg_input) */
-    SCG_OP_UNIFORM,  /* uniform number `slot` (scg_uniform) */
-    SCG_OP_FETCH,    /* texelFetch(texture `slot` (scg_texture), int a):
-                        vec4 for RGBA textures, float for R32F */
-
-    /* arithmetic: float types, and int for ADD/SUB/MUL/NEG/MIN/MAX/ABS */
-    SCG_OP_ADD,      /* a + b */
-    SCG_OP_SUB,      /* a - b */
-    SCG_OP_MUL,      /* a * b (componentwise) */
-    SCG_OP_DIV,      /* a / b (int: truncating; the IR never divides ints
-                        by zero on purpose) */
-    SCG_OP_NEG,      /* -a */
-    SCG_OP_MIN,      /* min(a, b) */
-    SCG_OP_MAX,      /* max(a, b) */
-    SCG_OP_ABS,      /* abs(a) */
-    SCG_OP_SQRT,     /* sqrt(a) */
-    SCG_OP_FLOOR,    /* floor(a) */
-    SCG_OP_DOT,      /* dot(a, b) -> float */
-    SCG_OP_CROSS,    /* cross(a, b): vec3 */
-    SCG_OP_LENGTH,   /* length(a) -> float */
-
-    /* vectors */
-    SCG_OP_VEC,      /* vecN(a, b[, c[, d]]) from N floats (type = vecN) */
-    SCG_OP_COMP,     /* component `slot` (0 = x … 3 = w) of vector a -> float */
-
-    /* comparisons of two floats or two ints -> bool */
-    SCG_OP_LT,       /* a < b */
-    SCG_OP_LE,       /* a <= b */
-    SCG_OP_EQ,       /* a == b */
-    SCG_OP_NE,       /* a != b */
-
-    /* bool logic */
-    SCG_OP_AND,      /* a && b */
-    SCG_OP_OR,       /* a || b */
-    SCG_OP_NOT,      /* !a */
-    SCG_OP_SELECT,   /* bool a ? b : c (b, c same type) */
-
-    /* conversions */
-    SCG_OP_I2F,      /* float(int a) */
-    SCG_OP_F2I,      /* int(float a), truncation toward zero */
-
-    /* local variables (mutable state) */
-    SCG_OP_VAR,      /* declares a variable of `type`; slot = array length
-                        (0: not an array); a = initial value or 0 (then the
-                        content is zero, and the emitter initialises it) */
-    SCG_OP_LOAD,     /* value of variable a (element b when an array) */
-    SCG_OP_STORE,    /* variable a (element c when an array) = b; void */
-
-    /* structured control flow (void) */
-    SCG_OP_IF,       /* if (bool a) {            */
-    SCG_OP_ELSE,     /* } else {                 */
-    SCG_OP_ENDIF,    /* }                        */
-    SCG_OP_LOOP,     /* for (int i = 0; i < int a; i++) { — defines the int
-                        counter i, visible inside the loop */
-    SCG_OP_BREAK,    /* break; out of the innermost LOOP */
-    SCG_OP_ENDLOOP,  /* }                        */
-
-    /* results (void) */
-    SCG_OP_OUTPUT,   /* output number `slot` (scg_output) = a */
-
+#define X(name, mnemonic, min_args, max_args, args, result, flags, glsl, spelling) \
+    SCG_OP_##name,
+#include "ops.h"
+#undef X
     SCG_OP_COUNT
 } scg_op;
 
-/* Lower-case mnemonic used by the listing ("add", "fetch", …). */
+/* The type every operand of an op must have (ops.h, column args). */
+typedef enum scg_arg_class {
+    SCG_ARG_ANY,      /* no operands, or checked by hand in the validator */
+    SCG_ARG_NUM,      /* int or a float type */
+    SCG_ARG_FLOATS,   /* a float type: float, vec2, vec3, vec4 */
+    SCG_ARG_SCALAR,   /* int or float */
+    SCG_ARG_VECTOR,   /* vec2, vec3 or vec4 */
+    SCG_ARG_BOOL,
+    SCG_ARG_INT,
+    SCG_ARG_FLOAT,
+    SCG_ARG_VEC3
+} scg_arg_class;
+
+/* How the type of the value an op defines is found (ops.h, column result). */
+typedef enum scg_result_rule {
+    SCG_RESULT_VOID,      /* defines no value */
+    SCG_RESULT_BOOL,
+    SCG_RESULT_INT,
+    SCG_RESULT_FLOAT,
+    SCG_RESULT_VEC3,
+    SCG_RESULT_AS_A,      /* the type of operand a */
+    SCG_RESULT_AS_B,      /* the type of operand b */
+    SCG_RESULT_BROADCAST, /* a's and b's type, a float broadcast to a vector */
+    SCG_RESULT_DECLARED,  /* given by the builder (constants, variables, vecN) */
+    SCG_RESULT_SLOT       /* set by the slot: the input's or texture's type */
+} scg_result_rule;
+
+/* Facts the passes key on (ops.h, column flags). */
+typedef enum scg_op_flag {
+    SCG_OPF_PURE = 1 << 0,   /* no effect; the value depends only on operands,
+                                slot and imm: equal instructions are one value */
+    SCG_OPF_EVAL = 1 << 1,   /* computed from its operands by scg_eval_arith,
+                                so constant folding may evaluate it */
+    SCG_OPF_COMM = 1 << 2,   /* commutative in a and b */
+    SCG_OPF_EFFECT = 1 << 3, /* control flow or a result: always live */
+    SCG_OPF_OPEN = 1 << 4,   /* opens a block (IF, ELSE, LOOP) */
+    SCG_OPF_CLOSE = 1 << 5,  /* closes a block (ELSE, ENDIF, ENDLOOP) */
+    SCG_OPF_VAR_A = 1 << 6   /* operand a is a variable (VAR), not a value */
+} scg_op_flag;
+
+/* How the GLSL emitter prints an op (ops.h, column glsl). */
+typedef enum scg_glsl_form {
+    SCG_GLSL_BY_HAND,   /* statements and odd expressions: the emitter's own code */
+    SCG_GLSL_IN_PLACE,  /* printed where used, not held in a local */
+    SCG_GLSL_INFIX,     /* a SPELLING b */
+    SCG_GLSL_PREFIX,    /* SPELLING a */
+    SCG_GLSL_CALL       /* SPELLING(a[, b]) */
+} scg_glsl_form;
+
+typedef struct scg_op_info {
+    const char *name;         /* mnemonic of the listing ("add", "fetch", …) */
+    int min_args, max_args;
+    scg_arg_class args;
+    scg_result_rule result;
+    unsigned flags;           /* scg_op_flag */
+    scg_glsl_form glsl;
+    const char *spelling;     /* "+", "min", … for INFIX, PREFIX and CALL */
+} scg_op_info;
+
+/* The op table, by scg_op (defined in ir.c from ops.h). */
+extern const scg_op_info scg_op_infos[SCG_OP_COUNT];
+
+static inline bool scg_op_has(scg_op op, scg_op_flag flag)
+{
+    return (scg_op_infos[op].flags & flag) != 0;
+}
+/* Lower-case mnemonic used by the listing ("add", "fetch", …); "?" for a
+ * number that is not an op. */
 const char *scg_op_name(scg_op op);
+/* The type op defines from operands of types ta and tb, by its result rule;
+ * SCG_VOID also for DECLARED and SLOT, which the operands do not decide. */
+scg_type scg_op_result_type(scg_op op, scg_type ta, scg_type tb);
 
 typedef int scg_value;     /* index of the defining instruction; 0 = none */
 

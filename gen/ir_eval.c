@@ -6,20 +6,6 @@
 
 #include "ir_eval.h"
 
-bool scg_op_is_arith(scg_op op)
-{
-    switch (op) {
-    case SCG_OP_ADD: case SCG_OP_SUB: case SCG_OP_MUL: case SCG_OP_DIV: case SCG_OP_NEG:
-    case SCG_OP_MIN: case SCG_OP_MAX: case SCG_OP_ABS: case SCG_OP_SQRT: case SCG_OP_FLOOR:
-    case SCG_OP_DOT: case SCG_OP_CROSS: case SCG_OP_LENGTH: case SCG_OP_VEC: case SCG_OP_COMP:
-    case SCG_OP_LT: case SCG_OP_LE: case SCG_OP_EQ: case SCG_OP_NE: case SCG_OP_AND:
-    case SCG_OP_OR: case SCG_OP_NOT: case SCG_OP_SELECT: case SCG_OP_I2F: case SCG_OP_F2I:
-        return true;
-    default:
-        return false;
-    }
-}
-
 /* Component k of a float operand, broadcasting a scalar. */
 static inline float comp(const scg_reg *r, scg_type t, int k)
 {
@@ -34,6 +20,7 @@ static float dotf(const float *x, const float *y, int w)
     return s;
 }
 
+/* One case per op with SCG_OPF_EVAL in the op table (ops.h). */
 void scg_eval_arith(const scg_inst *in, const scg_reg *ops, const scg_type *types,
                     scg_reg *out)
 {

@@ -12,12 +12,9 @@ typedef union scg_reg {
     int i[4];
 } scg_reg;
 
-/* True for ops that read only their operands (no texture, input,
- * variable or control flow): what constant folding may evaluate. */
-bool scg_op_is_arith(scg_op op);
-
-/* Evaluates an arithmetic op (scg_op_is_arith) of instruction `in` whose
- * operands have values ops[0..3] and types types[0..3]. */
+/* Evaluates instruction `in` of an op that reads only its operands
+ * (SCG_OPF_EVAL in the op table: no texture, input, variable or control
+ * flow), whose operands have values ops[0..3] and types types[0..3]. */
 void scg_eval_arith(const scg_inst *in, const scg_reg *ops, const scg_type *types,
                     scg_reg *out);
 

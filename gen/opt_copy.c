@@ -32,14 +32,13 @@ static int block_end(const scg_program *p, int open)
     int depth = 0;
     for (int i = open + 1; i < p->count; i++) {
         scg_op op = p->insts[i].op;
-        if (op == SCG_OP_IF || op == SCG_OP_LOOP)
-            depth++;
-        else if (op == SCG_OP_ENDIF || op == SCG_OP_ENDLOOP) {
-            if (depth == 0)
-                return i;
-            depth--;
-        } else if (op == SCG_OP_ELSE && depth == 0)
+        bool opens = scg_op_has(op, SCG_OPF_OPEN), closes = scg_op_has(op, SCG_OPF_CLOSE);
+        if (closes && depth == 0)
             return i;
+        if (opens && !closes)
+            depth++;
+        else if (closes && !opens)
+            depth--;
     }
     return p->count;
 }
@@ -70,22 +69,20 @@ bool scg_opt_copy(scg_program *p)
                 progress = true;
             }
             break;
-        case SCG_OP_IF:
-            opened[depth++] = i;
-            break;
-        case SCG_OP_LOOP:
-            /* The back edge brings the stores of the body to its start. */
-            forget_stored(p, i + 1, block_end(p, i), known);
-            opened[depth++] = i;
-            break;
-        case SCG_OP_ELSE:
-            forget_stored(p, opened[depth - 1] + 1, i, known);
-            break;
-        case SCG_OP_ENDIF:
-        case SCG_OP_ENDLOOP:
-            forget_stored(p, opened[--depth] + 1, i, known);
-            break;
         default:
+            /* Closing a branch or a loop forgets what it stored (ELSE:
+             * the then branch, from its IF, which stays the opening the
+             * endif is matched with). */
+            if (scg_op_has(in->op, SCG_OPF_CLOSE)) {
+                forget_stored(p, opened[depth - 1] + 1, i, known);
+                if (!scg_op_has(in->op, SCG_OPF_OPEN))
+                    depth--;
+            } else if (scg_op_has(in->op, SCG_OPF_OPEN)) {
+                /* The back edge brings the stores of the body to its start. */
+                if (in->op == SCG_OP_LOOP)
+                    forget_stored(p, i + 1, block_end(p, i), known);
+                opened[depth++] = i;
+            }
             break;
         }
     }

@@ -1,9 +1,10 @@
 /* opt_cse.c — common subexpression elimination over the structured
  * program, by hashed value numbering in one pass over the instructions. A
- * pure instruction (constant, input, uniform, texture fetch, arithmetic)
- * equal to one already seen in an enclosing, still open block is replaced
- * by it. Scopes follow the blocks: what a block computes is forgotten when
- * it closes, so no value is used outside its scope. Variable loads are
+ * pure instruction (SCG_OPF_PURE in the op table: constant, input, uniform,
+ * texture fetch, arithmetic) equal to one already seen in an enclosing,
+ * still open block is replaced by it. Scopes follow the blocks: what a
+ * block computes is forgotten when it closes, so no value is used outside
+ * its scope. Variable loads are
  * never merged: a store may lie between them.
  *
  * The table is open addressing with linear probing, holding value numbers
@@ -15,27 +16,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ir_eval.h"
-
-static bool is_pure(scg_op op)
-{
-    return scg_op_is_arith(op) || op == SCG_OP_CONST || op == SCG_OP_INPUT ||
-           op == SCG_OP_UNIFORM || op == SCG_OP_FETCH;
-}
-
-static bool commutative(scg_op op)
-{
-    return op == SCG_OP_ADD || op == SCG_OP_MUL || op == SCG_OP_MIN || op == SCG_OP_MAX ||
-           op == SCG_OP_DOT || op == SCG_OP_EQ || op == SCG_OP_NE || op == SCG_OP_AND ||
-           op == SCG_OP_OR;
-}
+#include "ir.h"
 
 /* Operands in canonical order: commutative operations compare equal with
  * their operands swapped. */
 static void canonical_args(const scg_inst *in, scg_value args[4])
 {
     memcpy(args, in->arg, 4 * sizeof *args);
-    if (commutative(in->op) && args[1] < args[0]) {
+    if (scg_op_has(in->op, SCG_OPF_COMM) && args[1] < args[0]) {
         scg_value t = args[0];
         args[0] = args[1];
         args[1] = t;
@@ -94,18 +82,21 @@ bool scg_opt_cse(scg_program *p)
         for (int k = 0; k < 4; k++)
             if (in->arg[k] && repl[in->arg[k]])
                 in->arg[k] = repl[in->arg[k]];
-        if (in->op == SCG_OP_ELSE || in->op == SCG_OP_ENDIF || in->op == SCG_OP_ENDLOOP) {
+        /* ELSE closes the then branch and opens the else branch at the
+         * same depth, with the same mark. */
+        bool opens = scg_op_has(in->op, SCG_OPF_OPEN), closes = scg_op_has(in->op, SCG_OPF_CLOSE);
+        if (closes) {
             while (ninserted > marks[depth])
                 table[inserted[--ninserted]] = 0;
-            if (in->op != SCG_OP_ELSE)
+            if (!opens)
                 depth--;
             continue;
         }
-        if (in->op == SCG_OP_IF || in->op == SCG_OP_LOOP) {
+        if (opens) {
             marks[++depth] = ninserted;
             continue;
         }
-        if (!is_pure(in->op))
+        if (!scg_op_has(in->op, SCG_OPF_PURE))
             continue;
         scg_value args[4];
         canonical_args(in, args);

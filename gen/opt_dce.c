@@ -1,16 +1,11 @@
-/* opt_dce.c — dead code elimination. Roots are outputs, control flow and
- * stores to variables that some live instruction loads; everything they do
- * not reach is removed, then blocks left empty (an if with nothing inside,
- * an empty else, a loop with an empty body) are removed too. */
+/* opt_dce.c — dead code elimination. Roots are outputs and control flow
+ * (SCG_OPF_EFFECT in the op table) and stores to variables that some live
+ * instruction loads; everything they do not reach is removed, then blocks
+ * left empty (an if with nothing inside, an empty else, a loop with an
+ * empty body) are removed too. */
 #include <stdlib.h>
 
 #include "ir.h"
-
-static bool is_control(scg_op op)
-{
-    return op == SCG_OP_IF || op == SCG_OP_ELSE || op == SCG_OP_ENDIF || op == SCG_OP_LOOP ||
-           op == SCG_OP_ENDLOOP || op == SCG_OP_BREAK;
-}
 
 /* Removes `if c {}`, `else {}` and loops whose body is empty; true when
  * something went. */
@@ -24,12 +19,13 @@ static bool remove_empty_blocks(scg_program *p)
             continue;
         if (prev) {
             scg_op po = p->insts[prev].op;
-            if ((po == SCG_OP_IF && in->op == SCG_OP_ENDIF) ||
-                (po == SCG_OP_ELSE && in->op == SCG_OP_ENDIF) ||
-                (po == SCG_OP_LOOP && in->op == SCG_OP_ENDLOOP)) {
+            /* A block opened and at once closed for good (not by an ELSE,
+             * whose branch may hold work: `if c {} else {…}` stays). */
+            if (scg_op_has(po, SCG_OPF_OPEN) && scg_op_has(in->op, SCG_OPF_CLOSE) &&
+                !scg_op_has(in->op, SCG_OPF_OPEN)) {
                 p->insts[prev].op = SCG_OP_NOP;
                 /* `else {}` ends the if: keep its endif. */
-                if (po != SCG_OP_ELSE)
+                if (!scg_op_has(po, SCG_OPF_CLOSE))
                     in->op = SCG_OP_NOP;
                 progress = true;
                 prev = 0;
@@ -64,7 +60,7 @@ bool scg_opt_dce(scg_program *p)
             next_store[i] = first_store[in->arg[0]];
             first_store[in->arg[0]] = i;
         }
-        if (in->op == SCG_OP_OUTPUT || is_control(in->op)) {
+        if (scg_op_has(in->op, SCG_OPF_EFFECT)) {
             live[i] = true;
             work[nwork++] = i;
         }

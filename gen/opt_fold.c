@@ -118,7 +118,7 @@ bool scg_opt_fold(scg_program *p)
         for (int k = 0; k < 4; k++)
             if (in->arg[k] && repl[in->arg[k]])
                 in->arg[k] = repl[in->arg[k]];
-        if (!scg_op_is_arith(in->op))
+        if (!scg_op_has(in->op, SCG_OPF_EVAL))
             continue;
         scg_value same = identity(p, in);
         if (same) {
