@@ -2,9 +2,10 @@
  * Objects live in small pools and are named by typed handles: an id is the
  * slot's index + 1 in the low 16 bits and the slot's generation in the high
  * 16, so a handle to a destroyed object stays invalid after its slot is
- * reused. Public descs have their own enums, translated here value by value,
- * so that internal enums can change without changing the public ABI. Every
- * problem with an argument is reported through one list of messages. */
+ * reused. The options' enums (splinecast_options.h) are the ones the
+ * runtime works with, so descs are checked here and passed on, never
+ * translated. Every problem with an argument is reported through one list
+ * of messages. */
 #include "splinecast.h"
 
 #include <math.h>
@@ -455,17 +456,6 @@ int sc_update_surface(sc_scene_id scene, const sc_surface_desc *desc, sc_error *
 
 /* ---- keys and generation ---- */
 
-static int trim_mode(sc_trim_method trim, const char *what, scg_trim_mode *mode, sc_error *err)
-{
-    switch (trim) {
-    case SC_TRIM_DEFAULT: *mode = SCG_TRIM_NONE; return SC_OK;  /* the default: fast */
-    case SC_TRIM_FAST: *mode = SCG_TRIM_FAST; return SC_OK;
-    case SC_TRIM_CLIP: *mode = SCG_TRIM_CLIP; return SC_OK;
-    case SC_TRIM_LEFT: *mode = SCG_TRIM_LEFT; return SC_OK;
-    }
-    return invalid(err, what, PROBLEM_ENUM, "%d", (int)trim);
-}
-
 static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error *err)
 {
     memset(opts, 0, sizeof *opts);
@@ -475,7 +465,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
         check_enum(desc->termination, SC_TERMINATION_MANUAL_BOTH + 1,
                    "sc_keys_desc.termination", err) ||
         check_enum(desc->start, SC_START_CPMAP + 1, "sc_keys_desc.start", err) ||
-        trim_mode(desc->trim, "sc_keys_desc.trim", &opts->trim_method, err) ||
+        check_enum(desc->trim, SC_TRIM_NONE + 1, "sc_keys_desc.trim", err) ||
         check_tolerance(desc->tolerance_px, "sc_keys_desc.tolerance_px", &opts->tol_milli, err))
         return SC_FAIL;
     if (desc->outputs & ~(unsigned)SCG_OUTPUT_ALL)
@@ -484,15 +474,11 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->nurbs_direct = desc->nurbs_direct != 0;
     opts->generic_above = desc->generic_above;
     opts->ignore_trims = desc->ignore_trims != 0;
+    opts->trim_method = desc->trim;
     opts->trim_iters = desc->trim_iters;
     opts->max_iters = desc->max_iters;
-    opts->start_set = desc->start != SC_START_DEFAULT;
-    opts->start = desc->start == SC_START_MID ? SCG_START_MID : SCG_START_CP;
-    static const scg_ert ert[] = {
-        [SC_TERMINATION_NONE] = SCG_ERT_NONE, [SC_TERMINATION_CONSERVATIVE] = SCG_ERT_CONSERVATIVE,
-        [SC_TERMINATION_MANUAL] = SCG_ERT_BEFORE, [SC_TERMINATION_MANUAL_BOTH] = SCG_ERT_BOTH};
-    opts->ert_set = desc->termination != SC_TERMINATION_DEFAULT;
-    opts->ert = ert[desc->termination];
+    opts->start = desc->start;
+    opts->termination = desc->termination;
     opts->outputs = desc->outputs;
     return SC_OK;
 }
@@ -601,13 +587,9 @@ int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *e
     out->id = 0;
     if (!desc)
         desc = &defaults;
-    sc_gl_context_desc gl_desc = {.debug = desc->debug};
-    switch (desc->backend) {
-    case SC_BACKEND_DEFAULT: gl_desc.backend = SC_GL_BACKEND_DEFAULT; break;
-    case SC_BACKEND_EGL: gl_desc.backend = SC_GL_BACKEND_EGL; break;
-    case SC_BACKEND_OSMESA: gl_desc.backend = SC_GL_BACKEND_OSMESA; break;
-    default: return invalid(err, "sc_context_desc.backend", PROBLEM_ENUM, "%d", desc->backend);
-    }
+    if (check_enum(desc->backend, SC_BACKEND_OSMESA + 1, "sc_context_desc.backend", err))
+        return SC_FAIL;
+    sc_gl_context_desc gl_desc = {.backend = desc->backend, .debug = desc->debug};
     context_object *c = sc_alloc(1, sizeof *c);
     if (sc_gl_context_create(&gl_desc, &c->gl, err) != SC_OK) {
         current_context = NULL;  /* a failed attempt may have changed it */
@@ -669,8 +651,7 @@ int sc_query_context_info(sc_context_id ctx, sc_context_info *info, sc_error *er
     if (!info)
         return invalid(err, "info", PROBLEM_NULL, NULL);
     memset(info, 0, sizeof *info);
-    info->backend = sc_gl_context_backend(c->gl) == SC_GL_BACKEND_OSMESA ? SC_BACKEND_OSMESA
-                                                                          : SC_BACKEND_EGL;
+    info->backend = sc_gl_context_backend(c->gl);
     snprintf(info->description, sizeof info->description, "%s",
              sc_gl_context_description(c->gl));
     return SC_OK;
@@ -727,14 +708,17 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
 {
     memset(r, 0, sizeof *r);
     if (check_enum(d->hull_split, SC_SPLIT_UNIFORM + 1, "sc_renderer_desc.hull_split", err) ||
-        check_int(d->hull_divisions, 0, 64, "sc_renderer_desc.hull_divisions", err) ||
+        check_int(d->hull_divisions, 0, SC_MAX_HULL_DIVISIONS, "sc_renderer_desc.hull_divisions", err) ||
         check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
         check_enum(d->start, SC_START_CPMAP + 1, "sc_renderer_desc.start", err) ||
         check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
         check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
         check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
                   err) ||
-        trim_mode(d->trim, "sc_renderer_desc.trim", &r->trim_method, err) ||
+        check_enum(d->trim, SC_TRIM_NONE + 1, "sc_renderer_desc.trim", err) ||
+        check_enum(d->termination, SC_TERMINATION_MANUAL_BOTH + 1,
+                   "sc_renderer_desc.termination", err) ||
+        check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
         check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
         check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
         check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
@@ -743,38 +727,20 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         return invalid(err, "sc_renderer_desc.hull_tolerance", PROBLEM_RANGE,
                        "%g (0 for the default, or a fraction of the scene's size below 1)",
                        d->hull_tolerance);
-    r->hulls.mode = d->hull_split == SC_SPLIT_UNIFORM ? SC_HULL_UNIFORM : SC_HULL_ADAPTIVE;
+    r->hulls.mode = d->hull_split;
     r->hulls.divisions = d->hull_divisions;
     r->hulls.tolerance = d->hull_tolerance;
     r->hulls.max_depth = d->hull_max_depth;
-    r->start_set = d->start != SC_START_DEFAULT;
-    r->start = d->start == SC_START_MID ? SCG_START_MID : SCG_START_CP;
+    r->start = d->start;
     r->max_iters = d->max_iters;
-    static const sc_view views[] = {
-        [SC_SHOW_SHADE] = SC_VIEW_SHADE, [SC_SHOW_UV] = SC_VIEW_UV,
-        [SC_SHOW_ITERS] = SC_VIEW_ITERS, [SC_SHOW_NORMAL] = SC_VIEW_NORMAL,
-        [SC_SHOW_DEPTH] = SC_VIEW_DEPTH, [SC_SHOW_HULL] = SC_VIEW_HULL};
-    r->view = views[d->show];
+    r->view = d->show;
     r->generic = d->generic != 0;
     r->unroll_max_degree = d->unroll_max_degree;
+    r->trim_method = d->trim;
     r->trim_iters = d->trim_iters;
+    r->ert = d->termination;
+    r->order = d->order;
     r->batch_hulls = d->batch_hulls;
-    switch (d->termination) {
-    case SC_TERMINATION_DEFAULT: r->ert = SC_ERT_DEFAULT; break;
-    case SC_TERMINATION_NONE: r->ert = SC_ERT_NONE; break;
-    case SC_TERMINATION_CONSERVATIVE: r->ert = SC_ERT_CONSERVATIVE; break;
-    case SC_TERMINATION_MANUAL: r->ert = SC_ERT_MANUAL; break;
-    case SC_TERMINATION_MANUAL_BOTH: r->ert = SC_ERT_MANUAL_BOTH; break;
-    default:
-        return invalid(err, "sc_renderer_desc.termination", PROBLEM_ENUM, "%d", d->termination);
-    }
-    switch (d->order) {
-    case SC_HULL_ORDER_DEFAULT: r->order = SC_ORDER_DEFAULT; break;
-    case SC_HULL_ORDER_FRONT_TO_BACK: r->order = SC_ORDER_FRONT_TO_BACK; break;
-    case SC_HULL_ORDER_BY_PROGRAM: r->order = SC_ORDER_BY_PROGRAM; break;
-    case SC_HULL_ORDER_HYBRID: r->order = SC_ORDER_HYBRID; break;
-    default: return invalid(err, "sc_renderer_desc.order", PROBLEM_ENUM, "%d", d->order);
-    }
     return SC_OK;
 }
 
