@@ -11,10 +11,14 @@
 
 static const char *const kind_names[] = {"bez", "nurbs", "tri"};
 static const char *const eval_names[] = {"dc", "bern", "loop"};
-static const char *const trim_names[] = {"trim", "clip", "fast", "left"};
+/* Indexed by the options' enums; their DEFAULT values have no spelling,
+ * since a key holds the value chosen. */
+static const char *const trim_names[] = {[SC_TRIM_FAST] = "fast", [SC_TRIM_CLIP] = "clip",
+                                         [SC_TRIM_LEFT] = "left", [SC_TRIM_NONE] = "trim"};
 static const char *const method_names[] = {"newton", "broyden", "bclip", "subdiv",
                                            "hybrid"};
-static const char *const start_names[] = {"mid", "cp", "view"};
+static const char *const start_names[] = {[SC_START_MID] = "mid", [SC_START_CPMAP] = "cp",
+                                          [SC_START_VIEW] = "view"};
 static const char *const output_names[] = {"shade", "aov", "iters", "uv", "hull"};
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
@@ -27,6 +31,7 @@ void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v)
     key->deg_v = deg_v;
     key->eval = SCG_EVAL_DC;
     key->method = SCG_METHOD_NEWTON;
+    key->trim = SC_TRIM_NONE;
     key->start = SCG_DEFAULT_START;
     key->max_iters = SCG_DEFAULT_ITERS;
     key->tol_milli = SCG_DEFAULT_TOL_MILLI;
@@ -48,7 +53,8 @@ bool scg_key_equal(const scg_key *a, const scg_key *b)
 
 /* Out-of-range enum values are printed as "?" so that a corrupt key never
  * indexes past a table; such a key fails to parse back. */
-#define NAME(table, v) ((int)(v) >= 0 && (int)(v) < COUNT(table) ? table[v] : "?")
+#define NAME(table, v) \
+    ((int)(v) >= 0 && (int)(v) < COUNT(table) && table[v] ? table[v] : "?")
 
 const char *scg_key_format(const scg_key *key, char *buf, size_t size)
 {
@@ -57,7 +63,7 @@ const char *scg_key_format(const scg_key *key, char *buf, size_t size)
         snprintf(degrees, sizeof degrees, "dyn");
     else
         snprintf(degrees, sizeof degrees, "%dx%d", key->deg_u, key->deg_v);
-    if (key->trim == SCG_TRIM_NONE)
+    if (key->trim == SC_TRIM_NONE)
         snprintf(trim, sizeof trim, "trim0");
     else
         snprintf(trim, sizeof trim, "%s%di%d", NAME(trim_names, key->trim), key->trim_degree,
@@ -112,6 +118,8 @@ static int match_prefix(const char *field, const char *const *table, int n, cons
     int best = -1;
     size_t best_len = 0;
     for (int i = 0; i < n; i++) {
+        if (!table[i])
+            continue;
         size_t len = strlen(table[i]);
         if (strncmp(field, table[i], len) == 0 && len > best_len) {
             best = i;
@@ -126,7 +134,7 @@ static int match_prefix(const char *field, const char *const *table, int n, cons
 static int match_exact(const char *field, const char *const *table, int n)
 {
     for (int i = 0; i < n; i++)
-        if (strcmp(field, table[i]) == 0)
+        if (table[i] && strcmp(field, table[i]) == 0)
             return i;
     return -1;
 }
@@ -237,17 +245,17 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
                            "loop together with degrees dyn (the generic program), "
                            "dc or bern with degrees UxV");
     if (strcmp(fields[3], "trim0") == 0)
-        k.trim = SCG_TRIM_NONE;
+        k.trim = SC_TRIM_NONE;
     else {
         int trim = match_prefix(fields[3], trim_names, COUNT(trim_names), &rest);
-        if (trim <= 0 || !read_int(&rest, &k.trim_degree) || *rest++ != 'i' ||
+        if (trim < 0 || trim == SC_TRIM_NONE || !read_int(&rest, &k.trim_degree) || *rest++ != 'i' ||
             !read_int(&rest, &k.trim_iters) || *rest || k.trim_degree < 1 ||
             k.trim_degree > SCG_MAX_DEGREE || k.trim_iters < 1 ||
             k.trim_iters > SCG_MAX_TRIM_ITERS)
             return field_error(err, text, 3, fields[3],
                                "trim0, or clipNiC, leftNiC or fastNiC with N the trim degree "
                                "1 to 16 and C the clipping iteration cap 1 to 64");
-        k.trim = (scg_trim_mode)trim;
+        k.trim = (sc_trim_method)trim;
     }
     int method = match_exact(fields[4], method_names, COUNT(method_names));
     if (method < 0)
@@ -256,7 +264,7 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
     int start = match_exact(fields[5], start_names, COUNT(start_names));
     if (start < 0)
         return field_error(err, text, 5, fields[5], "mid, cp or view");
-    k.start = (scg_start)start;
+    k.start = (sc_start)start;
     rest = fields[6];
     if (strncmp(rest, "it", 2) != 0 || (rest += 2, !read_int(&rest, &k.max_iters)) || *rest ||
         k.max_iters < 1 || k.max_iters > SCG_MAX_ITERS)
@@ -319,7 +327,7 @@ int scg_key_check(const scg_key *key, sc_error *err)
                   : key->method == SCG_METHOD_BCLIP  ? "Bézier clipping (bclip) is"
                   : key->method == SCG_METHOD_SUBDIV ? "object-space subdivision (subdiv) is"
                                                      : "the hybrid method (hybrid) is";
-    else if (key->start == SCG_START_VIEW)
+    else if (key->start == SC_START_VIEW)
         missing = "view-dependent initial values (view) are";
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";

@@ -17,10 +17,11 @@
 #include <stddef.h>
 
 #include "sc_base.h"
+#include "splinecast_options.h"
 
 #define SCG_MAX_DEGREE 16     /* highest degree in either direction */
 #define SCG_MAX_ITERS 64
-#define SCG_MAX_TRIM_ITERS 64 /* cap on clipping iterations per crossing */
+#define SCG_MAX_TRIM_ITERS SC_MAX_TRIM_ITERS /* cap on clipping iterations per crossing */
 #define SCG_DEFAULT_TRIM_ITERS 16
 #define SCG_KEY_MAX 128       /* buffer size for a formatted key */
 
@@ -38,20 +39,16 @@ typedef enum scg_eval_form {
                                  written "dyn" (bezdyn, nurbsdyn) */
 } scg_eval_form;
 
-/* Trimming (docs/trimming.md). Every trimmed form is written
- * <mode><N>i<C>: N the highest trim-piece degree (pieces of lower degree
- * are degree-elevated to N when packed), C the cap on Bézier-clipping
- * iterations per crossing (1 … SCG_MAX_TRIM_ITERS). */
-typedef enum scg_trim_mode {
-    SCG_TRIM_NONE = 0,        /* "trim0": untrimmed */
-    SCG_TRIM_CLIP,            /* "clipNiC": every piece, two-sided iterative
-                                 Bézier clipping */
-    SCG_TRIM_FAST,            /* "fastNiC": a uniform grid indexed
-                                 directly, a cell's parity and the pieces
-                                 that may pass through it; two-sided
-                                 clipping for the ambiguous ones */
-    SCG_TRIM_LEFT             /* "leftNiC": every piece, left-only clipping */
-} scg_trim_mode;
+/* Trimming (docs/trimming.md) is the option's sc_trim_method
+ * (splinecast_options.h): SC_TRIM_NONE "trim0" untrimmed, SC_TRIM_CLIP
+ * "clipNiC" every piece with two-sided iterative Bézier clipping,
+ * SC_TRIM_FAST "fastNiC" a uniform grid indexed directly (a cell's parity
+ * and the pieces that may pass through it; two-sided clipping for the
+ * ambiguous ones), SC_TRIM_LEFT "leftNiC" every piece with left-only
+ * clipping. N is the highest trim-piece degree (pieces of lower degree are
+ * degree-elevated to N when packed), C the cap on Bézier-clipping
+ * iterations per crossing (1 … SCG_MAX_TRIM_ITERS). A key never holds
+ * SC_TRIM_DEFAULT. */
 
 typedef enum scg_method {
     SCG_METHOD_NEWTON = 0,    /* "newton" */
@@ -61,11 +58,15 @@ typedef enum scg_method {
     SCG_METHOD_HYBRID         /* "hybrid" (reserved) */
 } scg_method;
 
-typedef enum scg_start {
-    SCG_START_MID = 0,        /* "mid": centre of the sub-patch domain */
-    SCG_START_CP,             /* "cp": interpolated hull-vertex parameters */
-    SCG_START_VIEW            /* "view": view-dependent (reserved) */
-} scg_start;
+/* The start is the option's sc_start: SC_START_MID "mid" (centre of the
+ * sub-patch domain), SC_START_CPMAP "cp" (interpolated hull-vertex
+ * parameters), SC_START_VIEW "view" (view-dependent, reserved). A key never
+ * holds SC_START_DEFAULT. */
+
+/* What the program does for early ray termination. This is not the
+ * renderer's option sc_ray_termination, which also decides whether whole
+ * hulls are culled between batches; sc_key_ert (scene_keys.h) maps the
+ * option to this field. */
 
 typedef enum scg_ert {
     SCG_ERT_NONE = 0,         /* "ert0" */
@@ -94,11 +95,11 @@ typedef struct scg_key {
     int deg_u, deg_v;         /* 1 … SCG_MAX_DEGREE; 0 with SCG_EVAL_LOOP */
     bool rational;
     scg_eval_form eval;
-    scg_trim_mode trim;
+    sc_trim_method trim;      /* never SC_TRIM_DEFAULT */
     int trim_degree;          /* 1 … SCG_MAX_DEGREE when trimmed, else 0 */
     int trim_iters;           /* 1 … SCG_MAX_TRIM_ITERS when trimmed, else 0 */
     scg_method method;
-    scg_start start;
+    sc_start start;           /* never SC_START_DEFAULT */
     int max_iters;            /* 1 … SCG_MAX_ITERS */
     int tol_milli;            /* tolerance in 1/1000 pixel footprint, >= 1 */
     scg_ert ert;
@@ -108,7 +109,7 @@ typedef struct scg_key {
 /* Defaults of the fields that tune Newton's method, the ones the renderer
  * draws with (measured on the tea set, docs/speed.md): from the
  * control-point parameters, at most 6 iterations, 0.05 pixel footprints. */
-#define SCG_DEFAULT_START SCG_START_CP
+#define SCG_DEFAULT_START SC_START_CPMAP
 #define SCG_DEFAULT_ITERS 6
 #define SCG_DEFAULT_TOL_MILLI 50
 

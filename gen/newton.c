@@ -433,7 +433,7 @@ static scg_value iteration_box(newton_ctx *c)
 
     scg_name(b, "uv0");
     scg_value uv0;
-    if (c->key->start == SCG_START_CP) {
+    if (c->key->start == SC_START_CPMAP) {
         uv0 = scg_input(b, SCG_IN_UV0);
     } else {
         scg_value half = scg_const_f(b, 0.5f);
@@ -625,7 +625,7 @@ void scg_build_newton(scg_builder *b, const scg_key *key)
         uv_out = scg_add(b, r_lo, scg_mul(b, uv, r_extent));
     }
     scg_name(b, NULL);
-    if (key->trim != SCG_TRIM_NONE)
+    if (key->trim != SC_TRIM_NONE)
         hit = trimmed_hit(c, hit, uv, r_lo, r_extent);
     scg_output(b, SCG_OUT_HIT, hit);
     scg_output(b, SCG_OUT_UV, uv_out);

@@ -112,7 +112,7 @@ static scg_value piece_crosses(trim_ctx *c, scg_value piece)
 {
     scg_builder *b = c->b;
     int n = c->n;
-    bool two_sided = c->key->trim != SCG_TRIM_LEFT;
+    bool two_sided = c->key->trim != SC_TRIM_LEFT;
     scg_value zero = scg_const_f(b, 0.0f);
     scg_value one = scg_const_f(b, 1.0f);
 
@@ -485,7 +485,7 @@ scg_value scg_trim_kept(scg_builder *b, const scg_key *key, scg_value block, scg
     scg_value header = scg_fetch(b, SCG_TEX_RECORDS, block);
     scg_name(b, NULL);
     scg_value count;
-    if (key->trim == SCG_TRIM_FAST) {
+    if (key->trim == SC_TRIM_FAST) {
         count = crossings_grid(&c, header);
     } else {
         scg_name(b, "trim_bias");
@@ -504,7 +504,7 @@ int scg_build_trim_probe(const scg_key *key, scg_program **out, sc_error *err)
     *out = NULL;
     if (scg_key_check(key, err) != SC_OK)
         return SC_FAIL;
-    if (key->trim == SCG_TRIM_NONE) {
+    if (key->trim == SC_TRIM_NONE) {
         char text[SCG_KEY_MAX];
         scg_key_format(key, text, sizeof text);
         return sc_fail_key(err, text, "variant key '%s': the trim probe needs a trimmed key",

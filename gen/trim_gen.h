@@ -24,7 +24,7 @@ scg_value scg_trim_normalise(scg_builder *b, scg_value block, scg_value origin,
  * the block (int, > 0) and returns a bool value, true when the point is
  * kept. `iters_var`, when not 0, is an int variable incremented once per
  * clipping iteration (for statistics). The key's trim mode must not be
- * SCG_TRIM_NONE. */
+ * SC_TRIM_NONE. */
 scg_value scg_trim_kept(scg_builder *b, const scg_key *key, scg_value block, scg_value uv,
                         scg_value iters_var);
 

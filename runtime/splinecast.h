@@ -29,6 +29,7 @@
 #include <stdint.h>
 
 #include "splinecast_base.h"
+#include "splinecast_options.h"   /* the options' enums: sc_start, sc_show, … */
 
 #ifdef __cplusplus
 extern "C" {
@@ -121,32 +122,6 @@ int sc_update_surface(sc_scene_id scene, const sc_surface_desc *desc, sc_error *
 #define SC_KEY_SIZE 128
 typedef struct sc_key { char text[SC_KEY_SIZE]; } sc_key;
 
-typedef enum sc_start {
-    SC_START_DEFAULT = 0,  /* cpmap */
-    SC_START_MID,          /* Newton starts at the middle of the sub-patch */
-    SC_START_CPMAP         /* at the control-point parameters interpolated
-                              over the hull */
-} sc_start;
-
-typedef enum sc_trim_method {
-    SC_TRIM_DEFAULT = 0,   /* fast */
-    SC_TRIM_FAST,          /* a uniform grid: only the pieces in the pixel's cell */
-    SC_TRIM_CLIP,          /* every piece, two-sided Bézier clipping */
-    SC_TRIM_LEFT           /* every piece, left-only Bézier clipping */
-} sc_trim_method;
-
-/* Early ray termination (default: manual). */
-typedef enum sc_ray_termination {
-    SC_TERMINATION_DEFAULT = 0,
-    SC_TERMINATION_NONE,        /* every hull fragment runs the intersection */
-    SC_TERMINATION_CONSERVATIVE,/* depth written with depth_greater, so that
-                                   a GPU may keep early depth testing */
-    SC_TERMINATION_MANUAL,      /* the intersection is skipped behind the
-                                   nearest hit so far */
-    SC_TERMINATION_MANUAL_BOTH  /* also a hit behind it is dropped before
-                                   trimming and shading */
-} sc_ray_termination;
-
 /* Outputs of a generated program (bits). */
 enum {
     SC_OUTPUT_SHADE = 1 << 0,  /* shaded colour */
@@ -219,12 +194,6 @@ void sc_free_glsl(sc_glsl *glsl);
 
 /* ---- GL contexts and runtime specialization ---------------------------- */
 
-typedef enum sc_backend {
-    SC_BACKEND_DEFAULT = 0,    /* EGL, falling back to OSMesa */
-    SC_BACKEND_EGL,            /* EGL; falls back to OSMesa with a warning */
-    SC_BACKEND_OSMESA
-} sc_backend;
-
 typedef struct sc_context_desc {
     sc_backend backend;
     int debug;                 /* a debug context: more driver messages */
@@ -259,31 +228,6 @@ typedef struct sc_program_info {
 int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error *err);
 
 /* ---- rendering -------------------------------------------------------- */
-
-typedef enum sc_show {
-    SC_SHOW_SHADE = 0,         /* shaded colour (default) */
-    SC_SHOW_UV,                /* (u, v) as colour */
-    SC_SHOW_ITERS,             /* iteration count */
-    SC_SHOW_NORMAL,            /* normal as colour */
-    SC_SHOW_DEPTH,             /* distance as grey */
-    SC_SHOW_HULL               /* each proxy hull in a colour of its own: the
-                                  surface inside it lit, the rest of its face
-                                  dim (early termination off) */
-} sc_show;
-
-typedef enum sc_hull_split {
-    SC_SPLIT_DEFAULT = 0,      /* adaptive */
-    SC_SPLIT_ADAPTIVE,         /* until the control mesh is flat within
-                                  hull_tolerance */
-    SC_SPLIT_UNIFORM           /* hull_divisions × hull_divisions per patch */
-} sc_hull_split;
-
-typedef enum sc_hull_order {
-    SC_HULL_ORDER_DEFAULT = 0,
-    SC_HULL_ORDER_FRONT_TO_BACK,   /* strictly by nearest hull depth */
-    SC_HULL_ORDER_BY_PROGRAM,      /* grouped by program, front to back in one */
-    SC_HULL_ORDER_HYBRID           /* depth buckets, by program in a bucket */
-} sc_hull_order;
 
 /* Zero means default in every field (the defaults of `splinecast render`). */
 typedef struct sc_renderer_desc {

@@ -316,9 +316,9 @@ TEST(emit_vertex_programs_by_start_and_colour)
 {
     scg_key key;
     scg_key_default(&key, SCG_PATCH_BEZIER, 2, 2);
-    key.start = SCG_START_MID;
+    key.start = SC_START_MID;
     CHECK_STR(scg_vertex_program_name(&key), "hull-mid-colour");
-    key.start = SCG_START_CP;
+    key.start = SC_START_CPMAP;
     key.outputs = SCG_OUTPUT_AOV;
     CHECK_STR(scg_vertex_program_name(&key), "hull-cp");
     scg_text vs = {0};

@@ -14,6 +14,7 @@
 #include "imgdiff.h"
 #include "io.h"
 #include "emit_glsl.h"
+#include "options.h"
 #include "refcast.h"
 
 static sc_gl_context *ert_context(const char **why)
@@ -92,7 +93,7 @@ TEST(ert_modes_stack_same_image)
     sc_error err = {0};
     CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
     CHECK_INT(scene.nsurfaces, 16);
-    sc_render_desc desc = {.ert = SC_ERT_NONE};
+    sc_render_desc desc = {.ert = SC_TERMINATION_NONE};
     sc_aov none;
     sc_render_stats stats;
     CHECK(render(ctx, &scene, &desc, &stack_camera, &none, &stats));
@@ -104,20 +105,20 @@ TEST(ert_modes_stack_same_image)
     CHECK_INT(not_nearest, 0);
 
     static const struct {
-        sc_ert_mode ert;
+        sc_ray_termination ert;
         int batch;
-    } cases[] = {{SC_ERT_CONSERVATIVE, 0}, {SC_ERT_MANUAL, 0},      {SC_ERT_MANUAL, 1},
-                 {SC_ERT_MANUAL, 1000000}, {SC_ERT_MANUAL_BOTH, 0}, {SC_ERT_MANUAL_BOTH, 5}};
+    } cases[] = {{SC_TERMINATION_CONSERVATIVE, 0}, {SC_TERMINATION_MANUAL, 0},      {SC_TERMINATION_MANUAL, 1},
+                 {SC_TERMINATION_MANUAL, 1000000}, {SC_TERMINATION_MANUAL_BOTH, 0}, {SC_TERMINATION_MANUAL_BOTH, 5}};
     int ok = 1;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0] && ok; c++) {
-        for (int order = SC_ORDER_FRONT_TO_BACK; order <= SC_ORDER_HYBRID && ok; order++) {
+        for (int order = SC_HULL_ORDER_FRONT_TO_BACK; order <= SC_HULL_ORDER_HYBRID && ok; order++) {
             desc = (sc_render_desc){.ert = cases[c].ert, .batch_hulls = cases[c].batch,
-                                    .order = (sc_draw_order)order};
+                                    .order = (sc_hull_order)order};
             sc_aov aov;
             CHECK(render(ctx, &scene, &desc, &stack_camera, &aov, &stats));
             char what[96];
-            snprintf(what, sizeof what, "%s batch %d %s", sc_ert_mode_name(cases[c].ert),
-                     cases[c].batch, sc_draw_order_name((sc_draw_order)order));
+            snprintf(what, sizeof what, "%s batch %d %s", cli_termination_name(cases[c].ert),
+                     cases[c].batch, cli_order_name((sc_hull_order)order));
             ok = same_image(&none, &aov, what);
             /* At most one read-back after every batch but the last (no
              * hull holds the eye), none without the texture. Layer 0 covers
@@ -125,7 +126,7 @@ TEST(ert_modes_stack_same_image)
              * bump), so once a batch has drawn the top layers, every hull
              * more than 4 layers down (plus a tile's margin) is culled. */
             int batch = cases[c].batch ? cases[c].batch : SC_RENDER_DEFAULT_BATCH_HULLS;
-            int manual = cases[c].ert != SC_ERT_CONSERVATIVE;
+            int manual = cases[c].ert != SC_TERMINATION_CONSERVATIVE;
             int most_readbacks = manual ? (hulls + batch - 1) / batch - 1 : 0;
             int per_layer = hulls / 16;
             int least_culled = manual && batch <= 2 * per_layer ? hulls - 6 * per_layer : 0;
@@ -163,8 +164,8 @@ TEST(ert_nearest_from_earlier_batches)
     float *nearest = sc_alloc((size_t)n, sizeof(float));
     static const int batches[] = {1000000, 1};
     for (int b = 0; b < 2; b++) {
-        sc_render_desc desc = {.ert = SC_ERT_MANUAL, .batch_hulls = batches[b],
-                               .order = SC_ORDER_FRONT_TO_BACK};
+        sc_render_desc desc = {.ert = SC_TERMINATION_MANUAL, .batch_hulls = batches[b],
+                               .order = SC_HULL_ORDER_FRONT_TO_BACK};
         sc_renderer *r;
         sc_aov aov;
         CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, &desc, &r, &err), SC_OK);
@@ -212,7 +213,7 @@ TEST(ert_orders_mixed_same_image)
                      .width = 128, .height = 128};
     sc_aov ref, none;
     CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
-    sc_render_desc desc = {.ert = SC_ERT_NONE, .order = SC_ORDER_BY_PROGRAM};
+    sc_render_desc desc = {.ert = SC_TERMINATION_NONE, .order = SC_HULL_ORDER_BY_PROGRAM};
     sc_render_stats stats;
     CHECK(render(ctx, &scene, &desc, &cam, &none, &stats));
     CHECK_INT(stats.programs, 6);
@@ -227,12 +228,12 @@ TEST(ert_orders_mixed_same_image)
 
     int switches[4] = {0};
     int ok = 1;
-    for (int order = SC_ORDER_FRONT_TO_BACK; order <= SC_ORDER_HYBRID && ok; order++) {
-        desc = (sc_render_desc){.ert = SC_ERT_MANUAL_BOTH, .order = (sc_draw_order)order,
+    for (int order = SC_HULL_ORDER_FRONT_TO_BACK; order <= SC_HULL_ORDER_HYBRID && ok; order++) {
+        desc = (sc_render_desc){.ert = SC_TERMINATION_MANUAL_BOTH, .order = (sc_hull_order)order,
                                 .batch_hulls = 16};
         sc_aov aov;
         CHECK(render(ctx, &scene, &desc, &cam, &aov, &stats));
-        ok = same_image(&none, &aov, sc_draw_order_name((sc_draw_order)order));
+        ok = same_image(&none, &aov, cli_order_name((sc_hull_order)order));
         switches[order] = stats.program_switches;
         sc_aov_free(&aov);
     }
@@ -241,9 +242,9 @@ TEST(ert_orders_mixed_same_image)
     CHECK(ok);
     /* By program: once per program; strictly front to back switches most,
      * the hybrid at most once per program and bucket. */
-    CHECK_INT(switches[SC_ORDER_BY_PROGRAM], 6);
-    CHECK(switches[SC_ORDER_FRONT_TO_BACK] > switches[SC_ORDER_HYBRID]);
-    CHECK(switches[SC_ORDER_HYBRID] >= 6);
+    CHECK_INT(switches[SC_HULL_ORDER_BY_PROGRAM], 6);
+    CHECK(switches[SC_HULL_ORDER_FRONT_TO_BACK] > switches[SC_HULL_ORDER_HYBRID]);
+    CHECK(switches[SC_HULL_ORDER_HYBRID] >= 6);
 }
 
 /* The eye inside the (single) hull of the top layer: that hull is drawn by
@@ -262,13 +263,13 @@ TEST(ert_eye_inside_hull)
     /* Above the surface (0.016 there) and below the hull's top (0.03). */
     sc_camera cam = {.eye = {0.2, 0.1, 0.025}, .target = {0.2, 0.1, -1}, .fovy_deg = 60,
                      .width = 64, .height = 64};
-    sc_render_desc desc = {.ert = SC_ERT_NONE, .hulls = {.mode = SC_HULL_UNIFORM, .divisions = 1}};
+    sc_render_desc desc = {.ert = SC_TERMINATION_NONE, .hulls = {.mode = SC_SPLIT_UNIFORM, .divisions = 1}};
     sc_aov ref, none, manual;
     sc_render_stats stats;
     CHECK_INT(sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err), SC_OK);
     CHECK(render(ctx, &scene, &desc, &cam, &none, &stats));
     CHECK_INT(stats.programs, 1);
-    desc.ert = SC_ERT_MANUAL;
+    desc.ert = SC_TERMINATION_MANUAL;
     CHECK(render(ctx, &scene, &desc, &cam, &manual, &stats));
     CHECK_INT(stats.programs, 2);  /* ert1, and ert0 for the hull holding the eye */
     CHECK_INT(stats.readbacks, 1);  /* after the hull holding the eye */
@@ -290,20 +291,20 @@ TEST(ert_eye_inside_hull)
 
 TEST(ert_names)
 {
-    sc_ert_mode mode;
-    for (int m = SC_ERT_NONE; m <= SC_ERT_MANUAL_BOTH; m++) {
-        CHECK_INT(sc_ert_mode_parse(sc_ert_mode_name((sc_ert_mode)m), &mode, NULL), SC_OK);
+    sc_ray_termination mode;
+    for (int m = SC_TERMINATION_NONE; m <= SC_TERMINATION_MANUAL_BOTH; m++) {
+        CHECK_INT(cli_termination_parse(cli_termination_name((sc_ray_termination)m), &mode, NULL), SC_OK);
         CHECK_INT(mode, m);
     }
-    CHECK_STR(sc_ert_mode_name(SC_ERT_MANUAL_BOTH), "manual-both");
-    sc_draw_order order;
-    CHECK_INT(sc_draw_order_parse("by-program", &order, NULL), SC_OK);
-    CHECK_INT(order, SC_ORDER_BY_PROGRAM);
-    CHECK_STR(sc_draw_order_name(SC_ORDER_HYBRID), "hybrid");
+    CHECK_STR(cli_termination_name(SC_TERMINATION_MANUAL_BOTH), "manual-both");
+    sc_hull_order order;
+    CHECK_INT(cli_order_parse("by-program", &order, NULL), SC_OK);
+    CHECK_INT(order, SC_HULL_ORDER_BY_PROGRAM);
+    CHECK_STR(cli_order_name(SC_HULL_ORDER_HYBRID), "hybrid");
     sc_error err = {0};
-    CHECK_INT(sc_ert_mode_parse("early", &mode, &err), SC_FAIL);
+    CHECK_INT(cli_termination_parse("early", &mode, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "unknown early ray termination 'early'");
-    CHECK_INT(sc_draw_order_parse("default", &order, &err), SC_FAIL);
+    CHECK_INT(cli_order_parse("default", &order, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "front-to-back, by-program or hybrid");
 }
 

@@ -14,16 +14,17 @@
 #include "gl_target.h"
 #include "imgdiff.h"
 #include "io.h"
+#include "options.h"
 #include "refcast.h"
 #include "scene_keys.h"
 
 /* The context of a backend, created once; NULL (with the reason in
  * *why) when the machine cannot make one. */
-static sc_gl_context *test_context(sc_gl_backend backend, const char **why)
+static sc_gl_context *test_context(sc_backend backend, const char **why)
 {
-    if (backend == SC_GL_BACKEND_DEFAULT) {
-        sc_gl_context *ctx = test_context(SC_GL_BACKEND_EGL, why);
-        return ctx ? ctx : test_context(SC_GL_BACKEND_OSMESA, why);
+    if (backend == SC_BACKEND_DEFAULT) {
+        sc_gl_context *ctx = test_context(SC_BACKEND_EGL, why);
+        return ctx ? ctx : test_context(SC_BACKEND_OSMESA, why);
     }
     static sc_gl_context *contexts[3];
     static sc_error errors[3];
@@ -42,10 +43,10 @@ static sc_gl_context *test_context(sc_gl_backend backend, const char **why)
 TEST(gl_context_egl)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_EGL, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_EGL, &why);
     if (!ctx)
         SKIP("no EGL context: %s", why);
-    CHECK_INT(sc_gl_context_backend(ctx), SC_GL_BACKEND_EGL);
+    CHECK_INT(sc_gl_context_backend(ctx), SC_BACKEND_EGL);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     CHECK(gl->major * 10 + gl->minor >= 45);
     GLint profile = 0;
@@ -57,10 +58,10 @@ TEST(gl_context_egl)
 TEST(gl_context_osmesa)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_OSMESA, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_OSMESA, &why);
     if (!ctx)
         SKIP("no OSMesa context: %s", why);
-    CHECK_INT(sc_gl_context_backend(ctx), SC_GL_BACKEND_OSMESA);
+    CHECK_INT(sc_gl_context_backend(ctx), SC_BACKEND_OSMESA);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     CHECK(gl->major * 10 + gl->minor >= 45);
     GLint profile = 0;
@@ -71,13 +72,13 @@ TEST(gl_context_osmesa)
 
 TEST(gl_backend_names)
 {
-    sc_gl_backend b;
-    CHECK_INT(sc_gl_backend_parse("egl", &b, NULL), SC_OK);
-    CHECK_INT(b, SC_GL_BACKEND_EGL);
-    CHECK_INT(sc_gl_backend_parse("osmesa", &b, NULL), SC_OK);
-    CHECK_STR(sc_gl_backend_name(b), "osmesa");
+    sc_backend b;
+    CHECK_INT(cli_backend_parse("egl", &b, NULL), SC_OK);
+    CHECK_INT(b, SC_BACKEND_EGL);
+    CHECK_INT(cli_backend_parse("osmesa", &b, NULL), SC_OK);
+    CHECK_STR(cli_backend_name(b), "osmesa");
     sc_error err = {0};
-    CHECK_INT(sc_gl_backend_parse("glx", &b, &err), SC_FAIL);
+    CHECK_INT(cli_backend_parse("glx", &b, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "glx");
 }
 
@@ -86,7 +87,7 @@ TEST(gl_backend_names)
 TEST(gl_loader_table)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -136,12 +137,12 @@ static GLuint compile_program(const sc_gl *gl, const char *vs_src, const char *f
 /* A triangle covering the lower-left half of the viewport (x + y < 0 in
  * NDC), at NDC depth 0.5, writing red to the colour attachment, (x, y, 7, 1)
  * to a float one and 42 to an integer one. */
-static void triangle_check(sc_gl_backend backend)
+static void triangle_check(sc_backend backend)
 {
     const char *why;
     sc_gl_context *ctx = test_context(backend, &why);
     if (!ctx)
-        SKIP("no %s context: %s", sc_gl_backend_name(backend), why);
+        SKIP("no %s context: %s", cli_backend_name(backend), why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     enum { W = 64, H = 48 };
     sc_gl_target target;
@@ -216,14 +217,14 @@ static void triangle_check(sc_gl_backend backend)
     CHECK(covered > W * H / 3);
 }
 
-TEST(gl_triangle_egl) { triangle_check(SC_GL_BACKEND_EGL); }
-TEST(gl_triangle_osmesa) { triangle_check(SC_GL_BACKEND_OSMESA); }
+TEST(gl_triangle_egl) { triangle_check(SC_BACKEND_EGL); }
+TEST(gl_triangle_osmesa) { triangle_check(SC_BACKEND_OSMESA); }
 
 /* Errors come back as records, not crashes. */
 TEST(gl_target_bad_size)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -250,7 +251,7 @@ static void capture_log(sc_log_level level, const char *message, void *user)
 TEST(gl_debug_output)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -271,7 +272,7 @@ TEST(gl_debug_output)
  * view at w×h) and compares with the reference (cached in the run's
  * temporary folder); *key0, when asked, is the key of surface 0. Returns 1,
  * 0 on any failure (printed), -1 when there is no GL context (*why). */
-static int render_view_against_reference(sc_gl_backend backend, const char *path,
+static int render_view_against_reference(sc_backend backend, const char *path,
                                          const sc_camera *view, int w, int h, sc_accuracy *acc,
                                          sc_render_stats *stats, scg_key *key0,
                                          const char **why)
@@ -317,7 +318,7 @@ static int render_view_against_reference(sc_gl_backend backend, const char *path
     return ok;
 }
 
-static int render_against_reference(sc_gl_backend backend, const char *path, int w, int h,
+static int render_against_reference(sc_backend backend, const char *path, int w, int h,
                                     sc_accuracy *acc, sc_render_stats *stats, const char **why)
 {
     return render_view_against_reference(backend, path, NULL, w, h, acc, stats, NULL, why);
@@ -336,7 +337,7 @@ static void check_accuracy_targets(const sc_accuracy *acc, const char *what)
     CHECK(acc->normal_mean_deg < 0.5);
 }
 
-static void teaset_check(sc_gl_backend backend)
+static void teaset_check(sc_backend backend)
 {
     static const char *const models[] = {"teaset/teapot32.bpt", "teaset/teacup.bpt",
                                           "teaset/teaspoon.bpt"};
@@ -357,8 +358,8 @@ static void teaset_check(sc_gl_backend backend)
     }
 }
 
-TEST(gl_render_teaset_egl) { teaset_check(SC_GL_BACKEND_EGL); }
-TEST(gl_render_teaset_osmesa) { teaset_check(SC_GL_BACKEND_OSMESA); }
+TEST(gl_render_teaset_egl) { teaset_check(SC_BACKEND_EGL); }
+TEST(gl_render_teaset_osmesa) { teaset_check(SC_BACKEND_OSMESA); }
 
 /* Trim blocks reach the programs: a CAD face trimmed by cubic curves and
  * lines (bug24012_face.igs) and three trimmed surfaces, two rational
@@ -371,7 +372,7 @@ TEST(gl_render_trimmed_iges)
         sc_render_stats stats;
         const char *why;
         REQUIRE_DATA(models[m]);
-        int ok = render_against_reference(SC_GL_BACKEND_DEFAULT, test_data(models[m]), 160, 160,
+        int ok = render_against_reference(SC_BACKEND_DEFAULT, test_data(models[m]), 160, 160,
                                           &acc, &stats, &why);
         if (ok < 0)
             SKIP("no GL context: %s", why);
@@ -410,7 +411,7 @@ static void add_patch(sc_scene *scene, int du, int dv, double x0, int rational)
 TEST(gl_render_distinct_keys)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -422,7 +423,7 @@ TEST(gl_render_distinct_keys)
     add_patch(&scene, 1, 1, 4.4, 0);
     sc_renderer *r;
     sc_error err = {0};
-    sc_render_desc desc = {.max_iters = 4, .view = SC_VIEW_SHADE};
+    sc_render_desc desc = {.max_iters = 4, .view = SC_SHOW_SHADE};
     CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, &desc, &r, &err), SC_OK);
     sc_render_stats stats;
     sc_renderer_stats(r, &stats);
@@ -452,10 +453,10 @@ TEST(gl_render_distinct_keys)
 }
 
 /* Renders one view of a bicubic bump cut into 2 × 2 hulls. */
-static int render_view(const sc_gl *gl, const sc_scene *scene, sc_view view,
+static int render_view(const sc_gl *gl, const sc_scene *scene, sc_show view,
                        const sc_camera *cam, sc_image *img, sc_aov *aov)
 {
-    sc_render_desc desc = {.view = view, .hulls = {.mode = SC_HULL_UNIFORM, .divisions = 2}};
+    sc_render_desc desc = {.view = view, .hulls = {.mode = SC_SPLIT_UNIFORM, .divisions = 2}};
     sc_renderer *r;
     sc_error err = {0};
     if (sc_renderer_create(gl, scene, &desc, &r, &err) != SC_OK)
@@ -474,7 +475,7 @@ static int render_view(const sc_gl *gl, const sc_scene *scene, sc_view view,
 TEST(gl_render_far_from_origin)
 {
     const char *why;
-    if (!test_context(SC_GL_BACKEND_DEFAULT, &why))
+    if (!test_context(SC_BACKEND_DEFAULT, &why))
         SKIP("no GL context: %s", why);
     sc_scene scene;
     sc_error err = {0};
@@ -492,7 +493,7 @@ TEST(gl_render_far_from_origin)
     sc_scene_free(&scene);
     sc_accuracy acc;
     sc_render_stats stats;
-    CHECK_INT(render_against_reference(SC_GL_BACKEND_DEFAULT, path, 160, 160, &acc, &stats, &why),
+    CHECK_INT(render_against_reference(SC_BACKEND_DEFAULT, path, 160, 160, &acc, &stats, &why),
               1);
     CHECK(acc.ref_hits > 160 * 160 / 10);
     check_accuracy_targets(&acc, "far_teapot.obj");
@@ -504,7 +505,7 @@ TEST(gl_render_far_from_origin)
 TEST(gl_render_hull_view)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -515,8 +516,8 @@ TEST(gl_render_hull_view)
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_image shade = {0}, hull = {0};
     sc_aov aov;
-    CHECK(render_view(gl, &scene, SC_VIEW_HULL, &cam, &hull, NULL));
-    CHECK(render_view(gl, &scene, SC_VIEW_SHADE, &cam, &shade, &aov));
+    CHECK(render_view(gl, &scene, SC_SHOW_HULL, &cam, &hull, NULL));
+    CHECK(render_view(gl, &scene, SC_SHOW_SHADE, &cam, &shade, &aov));
     sc_scene_free(&scene);
     if (!hull.pixels || !shade.pixels)
         return;
@@ -556,7 +557,7 @@ TEST(gl_render_hull_view)
 TEST(gl_render_keys_are_the_scene_keys)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     static const char *const scenes[] = {"mixed.obj", "trim_nine.obj"};
@@ -596,7 +597,7 @@ TEST(gl_render_keys_are_the_scene_keys)
 TEST(gl_render_degree12_generic)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -615,7 +616,7 @@ TEST(gl_render_degree12_generic)
     sc_accuracy acc;
     sc_render_stats stats;
     scg_key key;
-    CHECK_INT(render_view_against_reference(SC_GL_BACKEND_DEFAULT, path, &cam, 0, 0, &acc,
+    CHECK_INT(render_view_against_reference(SC_BACKEND_DEFAULT, path, &cam, 0, 0, &acc,
                                             &stats, &key, &why),
               1);
     CHECK(key.eval == SCG_EVAL_LOOP);
@@ -630,7 +631,7 @@ TEST(gl_render_degree12_generic)
 TEST(gl_render_torus_degree12)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     REQUIRE_DATA("iges/OCC26138_Torus.igs");
@@ -647,11 +648,11 @@ TEST(gl_render_torus_degree12)
     sc_accuracy acc;
     sc_render_stats stats;
     scg_key key;
-    CHECK_INT(render_view_against_reference(SC_GL_BACKEND_DEFAULT, path, &cam, 0, 0, &acc,
+    CHECK_INT(render_view_against_reference(SC_BACKEND_DEFAULT, path, &cam, 0, 0, &acc,
                                             &stats, &key, &why),
               1);
     CHECK(key.eval == SCG_EVAL_LOOP);
-    CHECK(key.trim != SCG_TRIM_NONE);
+    CHECK(key.trim != SC_TRIM_NONE);
     CHECK(acc.ref_hits > 96 * 96 / 4);
     check_accuracy_targets(&acc, "OCC26138_Torus.igs");
 }
@@ -662,7 +663,7 @@ TEST(gl_render_torus_degree12)
 TEST(gl_data_update_one_surface)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -753,7 +754,7 @@ static int against_fresh_and_reference(const sc_gl *gl, sc_renderer *r, const sc
 TEST(gl_render_update_one_surface)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_GL_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);

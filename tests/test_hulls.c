@@ -11,6 +11,7 @@
 #include "hulls.h"
 #include "io.h"
 #include "nurbs.h"
+#include "options.h"
 
 /* Signed distance of p outside hull h (<= 0 inside), over its faces. */
 static double outside_distance(const sc_hulls *hulls, int h, const double p[3])
@@ -104,19 +105,18 @@ TEST(hulls_parse)
 {
     sc_hull_desc d;
     sc_error err = {0};
-    CHECK_INT(sc_hull_desc_parse("uniform:3", &d, &err), SC_OK);
-    CHECK_INT(d.mode, SC_HULL_UNIFORM);
+#define PARSE(text) cli_hulls_parse(text, &d.mode, &d.divisions, &d.tolerance, &err)
+    CHECK_INT(PARSE("uniform:3"), SC_OK);
+    CHECK_INT(d.mode, SC_SPLIT_UNIFORM);
     CHECK_INT(d.divisions, 3);
-    CHECK_INT(sc_hull_desc_parse("adaptive:0.01", &d, &err), SC_OK);
-    CHECK_INT(d.mode, SC_HULL_ADAPTIVE);
+    CHECK_INT(PARSE("adaptive:0.01"), SC_OK);
+    CHECK_INT(d.mode, SC_SPLIT_ADAPTIVE);
     CHECK_NEAR(d.tolerance, 0.01, 0);
-    char buf[64];
-    sc_hull_desc_format(&d, buf, sizeof buf);
-    CHECK_STR(buf, "adaptive:0.01");
-    CHECK_INT(sc_hull_desc_parse("uniform:0", &d, &err), SC_FAIL);
-    CHECK_INT(sc_hull_desc_parse("uniform:2x", &d, &err), SC_FAIL);
-    CHECK_INT(sc_hull_desc_parse("adaptive:-1", &d, &err), SC_FAIL);
-    CHECK_INT(sc_hull_desc_parse("cubes", &d, &err), SC_FAIL);
+    CHECK_INT(PARSE("uniform:0"), SC_FAIL);
+    CHECK_INT(PARSE("uniform:2x"), SC_FAIL);
+    CHECK_INT(PARSE("adaptive:-1"), SC_FAIL);
+    CHECK_INT(PARSE("cubes"), SC_FAIL);
+#undef PARSE
     CHECK_CONTAINS(err.message, "uniform:N or adaptive:TOL");
 }
 
@@ -131,7 +131,7 @@ TEST(hulls_uniform_teapot)
         return;
     sc_hulls hulls;
     sc_error err = {0};
-    sc_hull_desc desc = {.mode = SC_HULL_UNIFORM, .divisions = 3};
+    sc_hull_desc desc = {.mode = SC_SPLIT_UNIFORM, .divisions = 3};
     CHECK_INT(sc_hulls_build(&scene, &desc, &hulls, &err), SC_OK);
     CHECK_INT(hulls.npatches, 32);
     CHECK_INT(hulls.count, 32 * 9);
@@ -181,7 +181,7 @@ TEST(hulls_adaptive_flatness)
     for (int r = 0; r < 2; r++) {
         sc_hulls hulls;
         sc_error err = {0};
-        sc_hull_desc desc = {.mode = SC_HULL_ADAPTIVE, .tolerance = tols[r], .max_depth = 30};
+        sc_hull_desc desc = {.mode = SC_SPLIT_ADAPTIVE, .tolerance = tols[r], .max_depth = 30};
         CHECK_INT(sc_hulls_build(&scene, &desc, &hulls, &err), SC_OK);
         counts[r] = hulls.count;
         double worst = 0;
@@ -241,7 +241,7 @@ TEST(hulls_flat_and_collapsed)
     }
     sc_hulls hulls;
     sc_error err = {0};
-    sc_hull_desc desc = {.mode = SC_HULL_UNIFORM, .divisions = 1};
+    sc_hull_desc desc = {.mode = SC_SPLIT_UNIFORM, .divisions = 1};
     CHECK_INT(sc_hulls_build(&scene, &desc, &hulls, &err), SC_OK);
     CHECK_INT(hulls.npatches, 2);
     CHECK_INT(hulls.count, 1);
@@ -280,7 +280,7 @@ TEST(hulls_nurbs_tiling)
         }
     sc_hulls hulls;
     sc_error err = {0};
-    sc_hull_desc desc = {.mode = SC_HULL_UNIFORM, .divisions = 2};
+    sc_hull_desc desc = {.mode = SC_SPLIT_UNIFORM, .divisions = 2};
     CHECK_INT(sc_hulls_build(&scene, &desc, &hulls, &err), SC_OK);
     CHECK_INT(hulls.npatches, 4);
     CHECK_INT(hulls.count, 16);

@@ -109,10 +109,10 @@ TEST(install_example_against_installed_copy)
     snprintf(buf, sizeof buf, "%s/bin/splinecast", prefix);
     CHECK(file_size(buf, &size) && size > 0);
     /* The public headers are the only headers installed: splinecast.h and
-     * the base it includes. */
+     * the two headers it includes (the base, the options' enums). */
     snprintf(cmd, sizeof cmd, "ls '%s/include'", prefix);
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_STR(out, "splinecast.h\nsplinecast_base.h\n");
+    CHECK_STR(out, "splinecast.h\nsplinecast_base.h\nsplinecast_options.h\n");
     free(out);
     /* The .pc names the final prefix, not the staging tree. */
     snprintf(cmd, sizeof cmd, "cat '%s/lib/pkgconfig/splinecast.pc'", prefix);

@@ -36,11 +36,12 @@ TEST(key_roundtrip_random)
         k.eval = (scg_eval_form)(test_rand(&rng) * 3);
         if (k.eval == SCG_EVAL_LOOP)
             k.deg_u = k.deg_v = 0;
-        k.trim = (scg_trim_mode)(test_rand(&rng) * 4);
-        k.trim_degree = k.trim ? 1 + (int)(test_rand(&rng) * SCG_MAX_DEGREE) : 0;
-        k.trim_iters = k.trim ? 1 + (int)(test_rand(&rng) * SCG_MAX_TRIM_ITERS) : 0;
+        k.trim = (sc_trim_method)(SC_TRIM_FAST + (int)(test_rand(&rng) * 4));
+        bool trimmed = k.trim != SC_TRIM_NONE;
+        k.trim_degree = trimmed ? 1 + (int)(test_rand(&rng) * SCG_MAX_DEGREE) : 0;
+        k.trim_iters = trimmed ? 1 + (int)(test_rand(&rng) * SCG_MAX_TRIM_ITERS) : 0;
         k.method = (scg_method)(test_rand(&rng) * 5);
-        k.start = (scg_start)(test_rand(&rng) * 3);
+        k.start = (sc_start)(SC_START_MID + (int)(test_rand(&rng) * 3));
         k.max_iters = 1 + (int)(test_rand(&rng) * SCG_MAX_ITERS);
         k.tol_milli = 1 + (int)(test_rand(&rng) * 1000000);
         k.ert = (scg_ert)(test_rand(&rng) * 3);

@@ -13,6 +13,7 @@
 #include "gl_render.h"
 #include "imgdiff.h"
 #include "io.h"
+#include "options.h"
 #include "refcast.h"
 #include "trim.h"
 #include "trim_pack.h"
@@ -33,13 +34,13 @@ static const struct {
 };
 enum { EXAMPLE_COUNT = sizeof example_scenes / sizeof example_scenes[0], VIEW_SIZE = 192 };
 
-static const scg_trim_mode all_methods[] = {SCG_TRIM_CLIP, SCG_TRIM_LEFT, SCG_TRIM_FAST};
+static const sc_trim_method all_methods[] = {SC_TRIM_CLIP, SC_TRIM_LEFT, SC_TRIM_FAST};
 static const char *const method_names[] = {"none", "clip", "fast", "left"};
 
 /* The context of a backend, created once; NULL (with the reason in *why)
  * when the machine cannot make one. An EGL request that fell back to
  * OSMesa counts as no EGL context. */
-static sc_gl_context *e2e_context(sc_gl_backend backend, const char **why)
+static sc_gl_context *e2e_context(sc_backend backend, const char **why)
 {
     static sc_gl_context *contexts[3];
     static sc_error errors[3];
@@ -51,7 +52,7 @@ static sc_gl_context *e2e_context(sc_gl_backend backend, const char **why)
             sc_gl_context_backend(contexts[backend]) != backend) {
             snprintf(errors[backend].message, sizeof errors[backend].message,
                      "the context fell back to %s",
-                     sc_gl_backend_name(sc_gl_context_backend(contexts[backend])));
+                     cli_backend_name(sc_gl_context_backend(contexts[backend])));
             sc_gl_context_destroy(contexts[backend]);
             contexts[backend] = NULL;
         }
@@ -219,12 +220,12 @@ static void example_scene_check(sc_gl_context *ctx, int k, e2e_counts *counts, i
  * cut large regions away (the reference misses there), so a method that
  * kept or dropped a region would fail by hundreds of pixels, far above the
  * 0.1 % allowed for grazing rays; the decision count sees single pixels. */
-static void example_scenes_check(sc_gl_backend backend)
+static void example_scenes_check(sc_backend backend)
 {
     const char *why;
     sc_gl_context *ctx = e2e_context(backend, &why);
     if (!ctx)
-        SKIP("no %s context: %s", sc_gl_backend_name(backend), why);
+        SKIP("no %s context: %s", cli_backend_name(backend), why);
     e2e_counts counts[3] = {{0}};
     int inaccurate = 0;
     for (int k = 0; k < EXAMPLE_COUNT; k++) {
@@ -241,30 +242,30 @@ static void example_scenes_check(sc_gl_backend backend)
     CHECK_INT(counts[0].wrong + counts[1].wrong + counts[2].wrong, 0);
 }
 
-TEST(trime2e_example_scenes_egl) { example_scenes_check(SC_GL_BACKEND_EGL); }
-TEST(trime2e_example_scenes_osmesa) { example_scenes_check(SC_GL_BACKEND_OSMESA); }
+TEST(trime2e_example_scenes_egl) { example_scenes_check(SC_BACKEND_EGL); }
+TEST(trime2e_example_scenes_osmesa) { example_scenes_check(SC_BACKEND_OSMESA); }
 
 TEST(trime2e_method_parse)
 {
-    scg_trim_mode mode = SCG_TRIM_NONE;
+    sc_trim_method mode = SC_TRIM_NONE;
     int iters = 0;
     sc_error err = {0};
-    CHECK_INT(sc_trim_method_parse("left", &mode, &iters, &err), SC_OK);
-    CHECK_INT(mode, SCG_TRIM_LEFT);
+    CHECK_INT(cli_trim_parse("left", &mode, &iters, &err), SC_OK);
+    CHECK_INT(mode, SC_TRIM_LEFT);
     CHECK_INT(iters, 0);
-    CHECK_INT(sc_trim_method_parse("clip:24", &mode, &iters, &err), SC_OK);
-    CHECK_INT(mode, SCG_TRIM_CLIP);
+    CHECK_INT(cli_trim_parse("clip:24", &mode, &iters, &err), SC_OK);
+    CHECK_INT(mode, SC_TRIM_CLIP);
     CHECK_INT(iters, 24);
-    CHECK_INT(sc_trim_method_parse("fast:64", &mode, &iters, &err), SC_OK);
-    CHECK_INT(mode, SCG_TRIM_FAST);
+    CHECK_INT(cli_trim_parse("fast:64", &mode, &iters, &err), SC_OK);
+    CHECK_INT(mode, SC_TRIM_FAST);
     CHECK_INT(iters, 64);
     static const char *const bad[] = {"fast:0", "fast:65", "fast:", "fast:4x", "quick", "",
                                       "clipx", "cli"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         err.message[0] = 0;
-        CHECK_INT(sc_trim_method_parse(bad[k], &mode, &iters, &err), SC_FAIL);
+        CHECK_INT(cli_trim_parse(bad[k], &mode, &iters, &err), SC_FAIL);
         CHECK(err.message[0] != 0);
     }
-    CHECK_INT(mode, SCG_TRIM_FAST);
+    CHECK_INT(mode, SC_TRIM_FAST);
     CHECK_INT(iters, 64);
 }

@@ -518,7 +518,7 @@ TEST(trimgpu_key_forms)
     scg_key key;
     sc_error err;
     CHECK_INT(scg_key_parse(good[1], &key, &err), SC_OK);
-    CHECK_INT(key.trim, SCG_TRIM_LEFT);
+    CHECK_INT(key.trim, SC_TRIM_LEFT);
     CHECK_INT(key.trim_degree, 2);
     CHECK_INT(key.trim_iters, 8);
     static const char *const bad[] = {"clip3", "fast0i4", "left3i0", "clip3i65", "trim1",
@@ -544,7 +544,7 @@ TEST(trimgpu_scene_keys)
               "bez3x3-poly-dc-fast2i16-newton-cp-it6-tol0.05-ert1-out.shade.aov");
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
-    opts.trim_method = SCG_TRIM_LEFT;
+    opts.trim_method = SC_TRIM_LEFT;
     opts.trim_iters = 24;
     sc_surface_key(&scene.surfaces[0], &opts, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),

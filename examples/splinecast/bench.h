@@ -25,15 +25,15 @@ void bench_print(const char *variant, const char *extra, const bench_result *r);
 typedef struct bench_sweep {
     const char *scenes[32];
     int nscenes;
-    sc_ert_mode erts[4];
+    sc_ray_termination erts[4];
     int nerts;
-    sc_draw_order orders[3];
+    sc_hull_order orders[3];
     int norders;
     int batches[16];
     int nbatches;
 } bench_sweep;
 
-/* "all" or a comma list of names (sc_ert_mode_parse, sc_draw_order_parse),
+/* "all" or a comma list of names (cli_termination_parse, cli_order_parse),
  * and a comma list of batch sizes; 0 or the exit status of a usage error. */
 int bench_sweep_parse_erts(const char *text, bench_sweep *sweep);
 int bench_sweep_parse_orders(const char *text, bench_sweep *sweep);

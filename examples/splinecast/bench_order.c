@@ -12,6 +12,8 @@
 
 #include "bench.h"
 #include "commands.h"
+#include "options.h"
+#include "scene_keys.h"
 #include "io.h"
 
 /* Splits a comma list into at most `max` words of `buf`; -1 when longer. */
@@ -32,8 +34,8 @@ int bench_sweep_parse_erts(const char *text, bench_sweep *sweep)
     enum { MAX = sizeof sweep->erts / sizeof sweep->erts[0] };
     sweep->nerts = 0;
     if (!strcmp(text, "all")) {
-        for (int m = SC_ERT_NONE; m <= SC_ERT_MANUAL_BOTH; m++)
-            sweep->erts[sweep->nerts++] = (sc_ert_mode)m;
+        for (int m = SC_TERMINATION_NONE; m <= SC_TERMINATION_MANUAL_BOTH; m++)
+            sweep->erts[sweep->nerts++] = (sc_ray_termination)m;
         return 0;
     }
     char buf[256], *words[MAX];
@@ -42,7 +44,7 @@ int bench_sweep_parse_erts(const char *text, bench_sweep *sweep)
         return cli_usage_error("bench", "--ert takes all or a list of at most %d modes", MAX);
     for (int i = 0; i < n; i++) {
         sc_error err = {0};
-        if (sc_ert_mode_parse(words[i], &sweep->erts[i], &err) != SC_OK)
+        if (cli_termination_parse(words[i], &sweep->erts[i], &err) != SC_OK)
             return cli_usage_error("bench", "--ert: %s", err.message);
     }
     sweep->nerts = n;
@@ -54,8 +56,8 @@ int bench_sweep_parse_orders(const char *text, bench_sweep *sweep)
     enum { MAX = sizeof sweep->orders / sizeof sweep->orders[0] };
     sweep->norders = 0;
     if (!strcmp(text, "all")) {
-        for (int o = SC_ORDER_FRONT_TO_BACK; o <= SC_ORDER_HYBRID; o++)
-            sweep->orders[sweep->norders++] = (sc_draw_order)o;
+        for (int o = SC_HULL_ORDER_FRONT_TO_BACK; o <= SC_HULL_ORDER_HYBRID; o++)
+            sweep->orders[sweep->norders++] = (sc_hull_order)o;
         return 0;
     }
     char buf[256], *words[MAX];
@@ -65,7 +67,7 @@ int bench_sweep_parse_orders(const char *text, bench_sweep *sweep)
                                MAX);
     for (int i = 0; i < n; i++) {
         sc_error err = {0};
-        if (sc_draw_order_parse(words[i], &sweep->orders[i], &err) != SC_OK)
+        if (cli_order_parse(words[i], &sweep->orders[i], &err) != SC_OK)
             return cli_usage_error("bench", "--order: %s", err.message);
     }
     sweep->norders = n;
@@ -95,8 +97,8 @@ int bench_sweep_parse_batches(const char *text, bench_sweep *sweep)
 static void describe(const sc_render_desc *desc, char *buf, size_t size)
 {
     snprintf(buf, size, "ert=%s order=%s batch=%d",
-             sc_ert_mode_name(desc->ert ? desc->ert : SC_RENDER_DEFAULT_ERT),
-             sc_draw_order_name(desc->order ? desc->order : SC_RENDER_DEFAULT_ORDER),
+             cli_termination_name(desc->ert ? desc->ert : SC_DEFAULT_TERMINATION),
+             cli_order_name(desc->order ? desc->order : SC_RENDER_DEFAULT_ORDER),
              desc->batch_hulls ? desc->batch_hulls : SC_RENDER_DEFAULT_BATCH_HULLS);
 }
 
@@ -105,8 +107,8 @@ static void combination(const bench_sweep *sweep, int c, sc_render_desc *desc)
 {
     int nb = sweep->nbatches ? sweep->nbatches : 1, no = sweep->norders ? sweep->norders : 1;
     desc->batch_hulls = sweep->nbatches ? sweep->batches[c % nb] : 0;
-    desc->order = sweep->norders ? sweep->orders[c / nb % no] : SC_ORDER_DEFAULT;
-    desc->ert = sweep->nerts ? sweep->erts[c / nb / no] : SC_ERT_DEFAULT;
+    desc->order = sweep->norders ? sweep->orders[c / nb % no] : SC_HULL_ORDER_DEFAULT;
+    desc->ert = sweep->nerts ? sweep->erts[c / nb / no] : SC_TERMINATION_DEFAULT;
 }
 
 static const char *base_name(const char *path)

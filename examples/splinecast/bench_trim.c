@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "options.h"
 #include "gl_context.h"
 #include "gl_render.h"
 #include "trim_pack.h"
@@ -236,7 +237,7 @@ typedef struct options {
     sc_render_desc desc;
     int sizes[MAX_SIZES], nsizes;
     int frames;
-    scg_trim_mode methods[MAX_METHODS];
+    sc_trim_method methods[MAX_METHODS];
     int method_iters[MAX_METHODS];
     int nmethods;
     trim_shape trims[MAX_TRIMS];
@@ -270,14 +271,14 @@ static int parse_options(int argc, char **argv, options *o)
     memcpy(o->sizes, default_sizes, sizeof default_sizes);
     o->frames = 5;
     o->nmethods = 3;
-    o->methods[0] = SCG_TRIM_CLIP;
-    o->methods[1] = SCG_TRIM_LEFT;
-    o->methods[2] = SCG_TRIM_FAST;
+    o->methods[0] = SC_TRIM_CLIP;
+    o->methods[1] = SC_TRIM_LEFT;
+    o->methods[2] = SC_TRIM_FAST;
     o->ntrims = MAX_TRIMS;
     for (int t = 0; t < MAX_TRIMS; t++)
         o->trims[t] = (trim_shape)t;
     o->desc.max_iters = 4;
-    o->desc.hulls = (sc_hull_desc){.mode = SC_HULL_UNIFORM, .divisions = 4};
+    o->desc.hulls = (sc_hull_desc){.mode = SC_SPLIT_UNIFORM, .divisions = 4};
     sc_error err = {0};
     char items[MAX_SIZES][32];
     for (int i = 1; i < argc; i++) {
@@ -286,7 +287,7 @@ static int parse_options(int argc, char **argv, options *o)
         if (!strcmp(a, "--trim-table")) {
             continue;
         } else if (!strcmp(a, "--backend") && next) {
-            if (sc_gl_backend_parse(argv[++i], &o->context.backend, &err) != SC_OK)
+            if (cli_backend_parse(argv[++i], &o->context.backend, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--sizes") && next) {
             int n = split_list(argv[++i], items, MAX_SIZES);
@@ -313,7 +314,7 @@ static int parse_options(int argc, char **argv, options *o)
                                        "fast[:ITERS], not '%s'", argv[i]);
             for (int k = 0; k < n; k++) {
                 o->method_iters[k] = 0;
-                if (sc_trim_method_parse(items[k], &o->methods[k], &o->method_iters[k], &err) !=
+                if (cli_trim_parse(items[k], &o->methods[k], &o->method_iters[k], &err) !=
                     SC_OK)
                     return cli_usage_error("bench", "--methods: %s", err.message);
             }
@@ -341,7 +342,8 @@ static int parse_options(int argc, char **argv, options *o)
                                        SCG_MAX_ITERS, argv[i]);
             o->desc.max_iters = (int)n;
         } else if (!strcmp(a, "--hull") && next) {
-            if (sc_hull_desc_parse(argv[++i], &o->desc.hulls, &err) != SC_OK)
+            if (cli_hulls_parse(argv[++i], &o->desc.hulls.mode, &o->desc.hulls.divisions,
+                                &o->desc.hulls.tolerance, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else {
             return cli_usage_error("bench", "--trim-table: unexpected argument '%s'", a);
@@ -350,9 +352,9 @@ static int parse_options(int argc, char **argv, options *o)
     return 0;
 }
 
-static const char *method_name(scg_trim_mode m)
+static const char *method_name(sc_trim_method m)
 {
-    return m == SCG_TRIM_CLIP ? "clip" : m == SCG_TRIM_LEFT ? "left" : "fast";
+    return m == SC_TRIM_CLIP ? "clip" : m == SC_TRIM_LEFT ? "left" : "fast";
 }
 
 /* ---- the table ---- */

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "sc_base.h"
+#include "splinecast_base.h"
 
 int cli_wants_help(int argc, char **argv)
 {

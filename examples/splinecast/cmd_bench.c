@@ -16,6 +16,7 @@
 
 #include "bench.h"
 #include "commands.h"
+#include "options.h"
 #include "gl_context.h"
 #include "gl_render.h"
 #include "io.h"
@@ -199,7 +200,7 @@ int cmd_bench(int argc, char **argv)
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
         if (!strcmp(a, "--backend") && next) {
-            if (sc_gl_backend_parse(argv[++i], &ctx_desc.backend, &err) != SC_OK)
+            if (cli_backend_parse(argv[++i], &ctx_desc.backend, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--size") && next) {
             i++;
@@ -215,14 +216,14 @@ int cmd_bench(int argc, char **argv)
                                        SCG_MAX_ITERS, argv[i]);
             desc.max_iters = (int)n;
         } else if (!strcmp(a, "--hull") && next) {
-            if (sc_hull_desc_parse(argv[++i], &desc.hulls, &err) != SC_OK)
+            if (cli_hulls_parse(argv[++i], &desc.hulls.mode, &desc.hulls.divisions,
+                                &desc.hulls.tolerance, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
             i++;
             if (strcmp(argv[i], "mid") && strcmp(argv[i], "cpmap"))
                 return cli_usage_error("bench", "--init takes mid or cpmap, not '%s'", argv[i]);
-            desc.start = !strcmp(argv[i], "mid") ? SCG_START_MID : SCG_START_CP;
-            desc.start_set = 1;
+            desc.start = !strcmp(argv[i], "mid") ? SC_START_MID : SC_START_CPMAP;
         } else if (!strcmp(a, "--frames") && next) {
             long n = strtol(argv[++i], &end, 10);
             if (end == argv[i] || *end || n < 1 || n > 1000)

@@ -1,10 +1,10 @@
 /* cmd_diff.c — `splinecast diff REF TEST`: the accuracy of one AOV image
- * against a reference, as one `accuracy` line (imgdiff.h). */
+ * against a reference, as one `accuracy` line (sc_compare_frames). */
 #include <stdio.h>
 #include <string.h>
 
 #include "commands.h"
-#include "imgdiff.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast diff REF TEST\n"
@@ -26,7 +26,9 @@ static const char *aov_name(const char *path, char *buf, size_t size)
 {
     size_t n = strlen(path);
     if (n >= 4 && !strcmp(path + n - 4, ".png")) {
-        sc_aov_path_for(path, buf, size);
+        /* A name that is only the extension (".png", "dir/.png") keeps it. */
+        int bare = n == 4 || path[n - 5] == '/';
+        snprintf(buf, size, "%.*s.aov", (int)(bare ? n : n - 4), path);
         return buf;
     }
     return path;
@@ -44,23 +46,21 @@ int cmd_diff(int argc, char **argv)
     const char *ref_path = aov_name(argv[1], ref_buf, sizeof ref_buf);
     const char *test_path = aov_name(argv[2], test_buf, sizeof test_buf);
     sc_error err = {0};
-    sc_aov ref, test;
-    if (sc_aov_read(ref_path, &ref, &err) != SC_OK)
+    sc_frame_id ref, test;
+    if (sc_load_frame(ref_path, &ref, &err) != SC_OK)
         return cli_report(&err);
-    if (sc_aov_read(test_path, &test, &err) != SC_OK) {
-        sc_aov_free(&ref);
+    if (sc_load_frame(test_path, &test, &err) != SC_OK) {
+        sc_destroy_frame(ref);
         return cli_report(&err);
     }
-    sc_accuracy acc;
-    int status = sc_accuracy_compare(&ref, &test, &acc, &err);
-    sc_aov_free(&ref);
-    sc_aov_free(&test);
+    sc_comparison cmp;
+    int status = sc_compare_frames(ref, test, &cmp, &err);
+    sc_destroy_frame(ref);
+    sc_destroy_frame(test);
     if (status != SC_OK) {
         fprintf(stderr, "splinecast diff: %s and %s: %s\n", ref_path, test_path, err.message);
         return 1;
     }
-    char line[512];
-    sc_accuracy_format(&acc, line, sizeof line);
-    puts(line);
+    puts(cmp.line);
     return 0;
 }

@@ -58,10 +58,7 @@ static void options_like(const scg_key *like, sc_key_options *opts)
     opts->nurbs_direct = like->kind == SCG_PATCH_NURBS;
     opts->max_iters = like->max_iters;
     opts->tol_milli = like->tol_milli;
-    opts->start_set = true;
     opts->start = like->start;
-    opts->ert_set = true;
-    opts->ert = like->ert;
     opts->outputs = like->outputs;
 }
 
@@ -115,6 +112,9 @@ static int add_scene_keys(const char *path, const scg_key *like, const int *iter
             scg_key key;
             opts.max_iters = iters[k];
             sc_surface_key(&scene.surfaces[s], &opts, &key);
+            /* --like names what the program does (ertN), not a renderer's
+             * termination option, so it is copied, not mapped. */
+            key.ert = like->ert;
             add_key(set, &key);
         }
     }
@@ -153,7 +153,7 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
     memset(set, 0, sizeof *set);
     scg_key like;
     scg_key_default(&like, SCG_PATCH_BEZIER, 3, 3);
-    like.ert = SC_KEY_DEFAULT_ERT;
+    like.ert = sc_key_ert(SC_TERMINATION_DEFAULT);
     like.outputs = SC_KEY_DEFAULT_OUTPUTS;
     const char *scene_path = NULL, *family = NULL;
     int iters[SCG_MAX_ITERS], niters = 0, iters_given = 0;

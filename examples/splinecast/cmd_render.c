@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "options.h"
 #include "gl_context.h"
 #include "gl_render.h"
 #include "imgdiff.h"
@@ -92,7 +93,7 @@ int cmd_render(int argc, char **argv)
         if (!strcmp(a, "-o") && next) {
             out_path = argv[++i];
         } else if (!strcmp(a, "--backend") && next) {
-            if (sc_gl_backend_parse(argv[++i], &ctx_desc.backend, &err) != SC_OK)
+            if (cli_backend_parse(argv[++i], &ctx_desc.backend, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--size") && next) {
             if (!parse_size(argv[++i], &width, &height))
@@ -115,26 +116,26 @@ int cmd_render(int argc, char **argv)
                                        argv[i]);
             desc.tol_milli = (int)(tol * 1000 + 0.5);
         } else if (!strcmp(a, "--hull") && next) {
-            if (sc_hull_desc_parse(argv[++i], &desc.hulls, &err) != SC_OK)
+            if (cli_hulls_parse(argv[++i], &desc.hulls.mode, &desc.hulls.divisions,
+                                &desc.hulls.tolerance, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
             i++;
             if (!strcmp(argv[i], "mid"))
-                desc.start = SCG_START_MID;
+                desc.start = SC_START_MID;
             else if (!strcmp(argv[i], "cpmap"))
-                desc.start = SCG_START_CP;
+                desc.start = SC_START_CPMAP;
             else
                 return cli_usage_error("render", "--init takes mid or cpmap, not '%s'", argv[i]);
-            desc.start_set = 1;
         } else if (!strcmp(a, "--trim") && next) {
-            if (sc_trim_method_parse(argv[++i], &desc.trim_method, &desc.trim_iters, &err) !=
+            if (cli_trim_parse(argv[++i], &desc.trim_method, &desc.trim_iters, &err) !=
                 SC_OK)
                 return cli_usage_error("render", "--trim: %s", err.message);
         } else if (!strcmp(a, "--ert") && next) {
-            if (sc_ert_mode_parse(argv[++i], &desc.ert, &err) != SC_OK)
+            if (cli_termination_parse(argv[++i], &desc.ert, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--order") && next) {
-            if (sc_draw_order_parse(argv[++i], &desc.order, &err) != SC_OK)
+            if (cli_order_parse(argv[++i], &desc.order, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--batch") && next) {
             char *end;
@@ -144,7 +145,7 @@ int cmd_render(int argc, char **argv)
                                        argv[i]);
             desc.batch_hulls = (int)n;
         } else if (!strcmp(a, "--view") && next) {
-            if (sc_view_parse(argv[++i], &desc.view, &err) != SC_OK)
+            if (cli_show_parse(argv[++i], &desc.view, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--frames") && next) {
             char *end;

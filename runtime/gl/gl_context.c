@@ -35,7 +35,7 @@ typedef sc_gl_proc (*osmesa_get_proc_fn)(const char *name);
 
 struct sc_gl_context {
     sc_gl gl;
-    sc_gl_backend backend;
+    sc_backend backend;
     char description[256];
     /* EGL */
     EGLDisplay egl_display;
@@ -181,7 +181,7 @@ static int egl_create(sc_gl_context *ctx, int debug, sc_error *err)
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl_context))
         return sc_fail(err, NULL, 0, "EGL: eglMakeCurrent failed (%s)",
                        egl_error_name(eglGetError()));
-    ctx->backend = SC_GL_BACKEND_EGL;
+    ctx->backend = SC_BACKEND_EGL;
     snprintf(ctx->description, sizeof ctx->description, "%s", platform);
     return sc_gl_load(&ctx->gl, egl_get_proc, NULL, GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED,
                       err);
@@ -249,7 +249,7 @@ static int osmesa_create(sc_gl_context *ctx, sc_error *err)
     if (!ctx->osmesa_make_current(ctx->osmesa_context, ctx->osmesa_dummy,
                                   GL_UNSIGNED_BYTE, 1, 1))
         return sc_fail(err, NULL, 0, "OSMesa: OSMesaMakeCurrent failed");
-    ctx->backend = SC_GL_BACKEND_OSMESA;
+    ctx->backend = SC_BACKEND_OSMESA;
     snprintf(ctx->description, sizeof ctx->description, "osmesa");
     return sc_gl_load(&ctx->gl, osmesa_get_proc, ctx, GL_MAJOR_REQUIRED,
                       GL_MINOR_REQUIRED, err);
@@ -284,11 +284,11 @@ int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
     sc_gl_context *ctx = sc_alloc(1, sizeof *ctx);
     int status = SC_FAIL;
     sc_error egl_err = {0};
-    if (desc->backend != SC_GL_BACKEND_OSMESA) {
+    if (desc->backend != SC_BACKEND_OSMESA) {
         status = egl_create(ctx, desc->debug, &egl_err);
         if (status != SC_OK) {
             release(ctx);
-            sc_log(desc->backend == SC_GL_BACKEND_EGL ? SC_LOG_WARN : SC_LOG_INFO,
+            sc_log(desc->backend == SC_BACKEND_EGL ? SC_LOG_WARN : SC_LOG_INFO,
                    "%s; falling back to OSMesa", egl_err.message);
         }
     }
@@ -299,7 +299,7 @@ int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
             release(ctx);
             free(ctx);
             /* When EGL was tried, its reason matters as much as OSMesa's. */
-            if (desc->backend == SC_GL_BACKEND_OSMESA)
+            if (desc->backend == SC_BACKEND_OSMESA)
                 return sc_fail(err, NULL, 0, "%s", osmesa_err.message);
             return sc_fail(err, NULL, 0, "%s; %s", egl_err.message, osmesa_err.message);
         }
@@ -327,7 +327,7 @@ void sc_gl_context_destroy(sc_gl_context *ctx)
 
 int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err)
 {
-    if (ctx->backend == SC_GL_BACKEND_EGL) {
+    if (ctx->backend == SC_BACKEND_EGL) {
         /* EGL and OSMesa share Mesa's dispatch library, and EGL skips a
          * make-current of the context it believes current: release first, so
          * that an OSMesa context made current meanwhile cannot stay active. */
@@ -346,31 +346,9 @@ int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err)
 
 const sc_gl *sc_gl_context_gl(const sc_gl_context *ctx) { return &ctx->gl; }
 
-sc_gl_backend sc_gl_context_backend(const sc_gl_context *ctx) { return ctx->backend; }
+sc_backend sc_gl_context_backend(const sc_gl_context *ctx) { return ctx->backend; }
 
 const char *sc_gl_context_description(const sc_gl_context *ctx)
 {
     return ctx->description;
-}
-
-int sc_gl_backend_parse(const char *text, sc_gl_backend *out, sc_error *err)
-{
-    if (!strcmp(text, "egl"))
-        *out = SC_GL_BACKEND_EGL;
-    else if (!strcmp(text, "osmesa"))
-        *out = SC_GL_BACKEND_OSMESA;
-    else if (!strcmp(text, "default"))
-        *out = SC_GL_BACKEND_DEFAULT;
-    else
-        return sc_fail(err, NULL, 0, "unknown backend '%s' (egl, osmesa or default)", text);
-    return SC_OK;
-}
-
-const char *sc_gl_backend_name(sc_gl_backend backend)
-{
-    switch (backend) {
-    case SC_GL_BACKEND_EGL: return "egl";
-    case SC_GL_BACKEND_OSMESA: return "osmesa";
-    default: return "default";
-    }
 }

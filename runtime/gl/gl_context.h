@@ -8,15 +8,10 @@
 #define SC_GL_CONTEXT_H
 
 #include "gl_loader.h"
-
-typedef enum sc_gl_backend {
-    SC_GL_BACKEND_DEFAULT = 0,  /* EGL, falling back to OSMesa */
-    SC_GL_BACKEND_EGL,          /* EGL; falls back to OSMesa with a warning */
-    SC_GL_BACKEND_OSMESA,
-} sc_gl_backend;
+#include "splinecast_options.h"
 
 typedef struct sc_gl_context_desc {
-    sc_gl_backend backend;
+    sc_backend backend;
     int debug;        /* ask for a debug context (more driver messages) */
 } sc_gl_context_desc;
 
@@ -30,12 +25,9 @@ int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err);
 
 const sc_gl *sc_gl_context_gl(const sc_gl_context *ctx);
 /* The backend that was actually used (EGL or OSMESA, never DEFAULT). */
-sc_gl_backend sc_gl_context_backend(const sc_gl_context *ctx);
+sc_backend sc_gl_context_backend(const sc_gl_context *ctx);
 /* "egl-surfaceless", "egl-device" or "osmesa", then GL_RENDERER. */
 const char *sc_gl_context_description(const sc_gl_context *ctx);
 
-/* "egl" / "osmesa" (and "default") to the enum and back. */
-int sc_gl_backend_parse(const char *text, sc_gl_backend *out, sc_error *err);
-const char *sc_gl_backend_name(sc_gl_backend backend);
 
 #endif

@@ -92,7 +92,7 @@ static int build_surface(arrays *a, const sc_surface *surf, int surface_id, cons
                          sc_gpu_surface *range, sc_error *err)
 {
     sc_trim_block block = {0};
-    if (key->trim != SCG_TRIM_NONE && surf->nloops > 0 &&
+    if (key->trim != SC_TRIM_NONE && surf->nloops > 0 &&
         sc_trim_pack(surf, key->trim_degree, &block, err) != SC_OK)
         return SC_FAIL;
     range->first_trim = a->ntrims;

@@ -12,17 +12,6 @@
 #include "programs.h"
 #include "scene_keys.h"
 
-/* The key's early-termination mode for the render's. */
-static scg_ert key_ert(sc_ert_mode mode)
-{
-    switch (mode) {
-    case SC_ERT_CONSERVATIVE: return SCG_ERT_CONSERVATIVE;
-    case SC_ERT_MANUAL: return SCG_ERT_BEFORE;
-    case SC_ERT_MANUAL_BOTH: return SCG_ERT_BOTH;
-    default: return SCG_ERT_NONE;
-    }
-}
-
 /* The key of one surface (scene_keys.h): its degrees, rationality and
  * trims, the render's start, iterations and outputs; the generic program
  * above the unrolling limit, or everywhere when asked. */
@@ -32,16 +21,14 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
         .generic_above = desc->unroll_max_degree,
         .max_iters = desc->max_iters,
         .tol_milli = desc->tol_milli,
-        .start_set = desc->start_set,
         .start = desc->start,
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
-        .ert_set = true,
-        .ert = key_ert(desc->ert),
+        .termination = desc->ert,
         .outputs = SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV |
-                   (desc->view == SC_VIEW_ITERS ? SCG_OUTPUT_ITERS : 0) |
-                   (desc->view == SC_VIEW_UV ? SCG_OUTPUT_UVVIEW : 0) |
-                   (desc->view == SC_VIEW_HULL ? SCG_OUTPUT_HULLVIEW : 0),
+                   (desc->view == SC_SHOW_ITERS ? SCG_OUTPUT_ITERS : 0) |
+                   (desc->view == SC_SHOW_UV ? SCG_OUTPUT_UVVIEW : 0) |
+                   (desc->view == SC_SHOW_HULL ? SCG_OUTPUT_HULLVIEW : 0),
     };
     sc_surface_key(s, &opts, key);
     if (desc->generic && key->eval != SCG_EVAL_LOOP) {
@@ -230,10 +217,10 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     r->scene = scene;
     r->desc = desc ? *desc : defaults;
     if (!r->desc.ert)
-        r->desc.ert = SC_RENDER_DEFAULT_ERT;
+        r->desc.ert = SC_DEFAULT_TERMINATION;
     /* Hull faces drawn where a ray misses would read as hits nearby. */
-    if (r->desc.view == SC_VIEW_HULL)
-        r->desc.ert = SC_ERT_NONE;
+    if (r->desc.view == SC_SHOW_HULL)
+        r->desc.ert = SC_TERMINATION_NONE;
     if (!r->desc.order)
         r->desc.order = SC_RENDER_DEFAULT_ORDER;
     if (r->desc.batch_hulls <= 0)

@@ -16,78 +16,8 @@
 #include "emit_glsl.h"
 #include "programs.h"
 
-int sc_view_parse(const char *text, sc_view *view, sc_error *err)
-{
-    static const char *const names[] = {"shade", "uv", "iters", "normal", "depth", "hull"};
-    for (int i = 0; i < 6; i++)
-        if (!strcmp(text, names[i])) {
-            *view = (sc_view)i;
-            return SC_OK;
-        }
-    return sc_fail(err, NULL, 0, "unknown view '%s' (shade, uv, iters, normal, depth or hull)", text);
-}
-
-int sc_trim_method_parse(const char *text, scg_trim_mode *mode, int *iters, sc_error *err)
-{
-    static const struct { const char *name; scg_trim_mode mode; } methods[] = {
-        {"clip", SCG_TRIM_CLIP}, {"left", SCG_TRIM_LEFT}, {"fast", SCG_TRIM_FAST}};
-    const char *colon = strchr(text, ':');
-    size_t len = colon ? (size_t)(colon - text) : strlen(text);
-    for (int i = 0; i < 3; i++) {
-        if (strlen(methods[i].name) != len || strncmp(text, methods[i].name, len))
-            continue;
-        if (colon) {
-            char *end;
-            long n = strtol(colon + 1, &end, 10);
-            if (end == colon + 1 || *end || n < 1 || n > SCG_MAX_TRIM_ITERS)
-                return sc_fail(err, NULL, 0, "trim iterations take 1 to %d, not '%s'",
-                               SCG_MAX_TRIM_ITERS, colon + 1);
-            *iters = (int)n;
-        }
-        *mode = methods[i].mode;
-        return SC_OK;
-    }
-    return sc_fail(err, NULL, 0, "unknown trim method '%s' (clip, left or fast[:ITERS])", text);
-}
-
-static const char *const ert_names[] = {"default", "none", "conservative", "manual",
-                                        "manual-both"};
-static const char *const order_names[] = {"default", "front-to-back", "by-program", "hybrid"};
-
-int sc_ert_mode_parse(const char *text, sc_ert_mode *mode, sc_error *err)
-{
-    for (int i = 1; i < 5; i++)
-        if (!strcmp(text, ert_names[i])) {
-            *mode = (sc_ert_mode)i;
-            return SC_OK;
-        }
-    return sc_fail(err, NULL, 0, "unknown early ray termination '%s' "
-                                 "(none, conservative, manual or manual-both)", text);
-}
-
-const char *sc_ert_mode_name(sc_ert_mode mode)
-{
-    return (unsigned)mode < 5 ? ert_names[mode] : "?";
-}
-
-int sc_draw_order_parse(const char *text, sc_draw_order *order, sc_error *err)
-{
-    for (int i = 1; i < 4; i++)
-        if (!strcmp(text, order_names[i])) {
-            *order = (sc_draw_order)i;
-            return SC_OK;
-        }
-    return sc_fail(err, NULL, 0, "unknown draw order '%s' (front-to-back, by-program or hybrid)",
-                   text);
-}
-
-const char *sc_draw_order_name(sc_draw_order order)
-{
-    return (unsigned)order < 4 ? order_names[order] : "?";
-}
-
 /* The attachments the programs write (emit_glsl.h). */
-static void target_formats(sc_view view, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
+static void target_formats(sc_show view, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
 {
     memset(formats, 0, sizeof(GLenum) * SC_GL_TARGET_MAX_COLOURS);
     formats[SCG_FRAG_OUT_COLOUR] = GL_SRGB8_ALPHA8;
@@ -95,11 +25,11 @@ static void target_formats(sc_view view, GLenum formats[SC_GL_TARGET_MAX_COLOURS
     formats[SCG_FRAG_OUT_UVT] = GL_RGBA32F;
     formats[SCG_FRAG_OUT_POINT] = GL_RGBA32F;
     formats[SCG_FRAG_OUT_NORMAL] = GL_RGBA32F;
-    if (view == SC_VIEW_ITERS)
+    if (view == SC_SHOW_ITERS)
         formats[SCG_FRAG_OUT_ITERS] = GL_RGBA8;
-    if (view == SC_VIEW_UV)
+    if (view == SC_SHOW_UV)
         formats[SCG_FRAG_OUT_UV] = GL_RGBA8;
-    if (view == SC_VIEW_HULL)
+    if (view == SC_SHOW_HULL)
         formats[SCG_FRAG_OUT_HULL] = GL_SRGB8_ALPHA8;
 }
 
@@ -162,13 +92,13 @@ static void order_hulls(sc_renderer *r, int n)
 {
     sort_item *items = r->items;
     qsort(items, (size_t)n, sizeof *items, by_order);
-    if (r->desc.order == SC_ORDER_FRONT_TO_BACK)
+    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK)
         return;
     /* By program: the programs in the order of their nearest hull, front to
      * back within one. Hybrid: the same within each bucket of batch_hulls
      * hulls taken front to back. In depth order, a group's first hull in a
      * range is its nearest there. */
-    int bucket = r->desc.order == SC_ORDER_HYBRID ? r->desc.batch_hulls : (n ? n : 1);
+    int bucket = r->desc.order == SC_HULL_ORDER_HYBRID ? r->desc.batch_hulls : (n ? n : 1);
     for (int start = 0; start < n; start += bucket) {
         int end = start + bucket < n ? start + bucket : n;
         for (int g = 0; g < r->ngroups; g++)
@@ -412,7 +342,7 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     }
     order_hulls(r, n);
     for (int i = 0; i < ninside; i++)
-        if (r->desc.ert != SC_ERT_NONE &&
+        if (r->desc.ert != SC_TERMINATION_NONE &&
             inside_program(r, r->hull_group[r->inside[i]], err) != SC_OK)
             return SC_FAIL;
 
@@ -559,22 +489,22 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
     free(point);
     if (status == SC_OK && img) {
         switch (r->desc.view) {
-        case SC_VIEW_SHADE:
+        case SC_SHOW_SHADE:
             status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_COLOUR, img, err);
             break;
-        case SC_VIEW_UV:
+        case SC_SHOW_UV:
             status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_UV, img, err);
             break;
-        case SC_VIEW_ITERS:
+        case SC_SHOW_ITERS:
             status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_ITERS, img, err);
             break;
-        case SC_VIEW_HULL:
+        case SC_SHOW_HULL:
             status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_HULL, img, err);
             break;
-        case SC_VIEW_NORMAL:
-        case SC_VIEW_DEPTH:
+        case SC_SHOW_NORMAL:
+        case SC_SHOW_DEPTH:
             sc_image_alloc(img, t->width, t->height, 4);
-            if (r->desc.view == SC_VIEW_NORMAL)
+            if (r->desc.view == SC_SHOW_NORMAL)
                 grey_view(a, a->normal, 3, 1, img);
             else
                 grey_view(a, a->t, 1, 0, img);

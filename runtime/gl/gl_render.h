@@ -13,72 +13,27 @@
 #include "image.h"
 #include "key.h"
 #include "programs.h"
-
-/* What the image shows. shade, uv, iters and hull come from the programs;
- * normal and depth are drawn from the AOVs. hull draws every proxy hull in a
- * colour of its own: the surface inside it lit, the rest of its face dim (its
- * AOVs then hold only the hits no nearer hull face hides). */
-typedef enum sc_view {
-    SC_VIEW_SHADE = 0,
-    SC_VIEW_UV,
-    SC_VIEW_ITERS,
-    SC_VIEW_NORMAL,
-    SC_VIEW_DEPTH,
-    SC_VIEW_HULL,
-} sc_view;
-
-int sc_view_parse(const char *text, sc_view *view, sc_error *err);
-/* "clip", "left" or "fast", optionally ":ITERS" (1 … SCG_MAX_TRIM_ITERS);
- * *iters is left alone when no cap is given. */
-int sc_trim_method_parse(const char *text, scg_trim_mode *mode, int *iters, sc_error *err);
-
-/* How a hull whose pixels are already covered by a nearer hit is skipped. */
-typedef enum sc_ert_mode {
-    SC_ERT_DEFAULT = 0,
-    SC_ERT_NONE,            /* every hull fragment runs the intersection */
-    SC_ERT_CONSERVATIVE,    /* depth written with layout(depth_greater) so
-                               early depth testing may stay on */
-    SC_ERT_MANUAL,          /* nearest hit so far read from a texture: the
-                               intersection is skipped behind it, and whole
-                               hulls behind it are culled between batches */
-    SC_ERT_MANUAL_BOTH,     /* also a hit found behind it is dropped before
-                               trimming and shading */
-} sc_ert_mode;
-
-/* The order hulls are drawn in each frame. */
-typedef enum sc_draw_order {
-    SC_ORDER_DEFAULT = 0,
-    SC_ORDER_FRONT_TO_BACK, /* strictly by nearest hull depth */
-    SC_ORDER_BY_PROGRAM,    /* grouped by program, front to back within one */
-    SC_ORDER_HYBRID,        /* depth buckets, by program within a bucket */
-} sc_draw_order;
-
-/* "none", "conservative", "manual" or "manual-both"; and back. */
-int sc_ert_mode_parse(const char *text, sc_ert_mode *mode, sc_error *err);
-const char *sc_ert_mode_name(sc_ert_mode mode);
-/* "front-to-back", "by-program" or "hybrid"; and back. */
-int sc_draw_order_parse(const char *text, sc_draw_order *order, sc_error *err);
-const char *sc_draw_order_name(sc_draw_order order);
+#include "splinecast_options.h"
 
 /* Zero means default in every field. */
 typedef struct sc_render_desc {
     sc_hull_desc hulls;     /* proxy hulls (hulls.h defaults) */
-    scg_start start;        /* SCG_START_MID or SCG_START_CP (default) */
-    int start_set;          /* 1 when `start` was chosen (0 picks the default) */
+    sc_start start;         /* Newton start (default cpmap) */
     int max_iters;          /* Newton iterations (SCG_DEFAULT_ITERS, key.h) */
     int tol_milli;          /* tolerance in 1/1000 pixel footprints
                                (SCG_DEFAULT_TOL_MILLI) */
-    sc_view view;
+    sc_show view;
     int generic;            /* the generic program (runtime loops) for every
                                surface, whatever its degree */
     int unroll_max_degree;  /* highest degree drawn with unrolled programs
                                (SC_UNROLL_MAX_DEGREE, scene_keys.h) */
-    scg_trim_mode trim_method; /* trim method of trimmed surfaces: SCG_TRIM_FAST
-                               (default), SCG_TRIM_CLIP or SCG_TRIM_LEFT */
+    sc_trim_method trim_method; /* trim method of trimmed surfaces (default
+                               fast) */
     int trim_iters;         /* cap on clipping iterations per trim crossing
                                (SCG_DEFAULT_TRIM_ITERS) */
-    sc_ert_mode ert;        /* early ray termination */
-    sc_draw_order order;    /* draw order policy */
+    sc_ray_termination ert; /* early ray termination (SC_DEFAULT_TERMINATION,
+                               scene_keys.h) */
+    sc_hull_order order;    /* draw order policy */
     int batch_hulls;        /* hulls per batch in the manual modes (a batch
                                reads the hits of the batches before it;
                                doubling after a batch that culled no hull),
@@ -89,9 +44,8 @@ typedef struct sc_render_desc {
                                renderer; NULL: a cache of the renderer's own */
 } sc_render_desc;
 
-/* Chosen by measurement (docs/speed.md, `splinecast bench --ert`, `--order`). */
-#define SC_RENDER_DEFAULT_ERT SC_ERT_MANUAL
-#define SC_RENDER_DEFAULT_ORDER SC_ORDER_HYBRID
+/* Chosen by measurement (docs/speed.md, `splinecast bench --order`). */
+#define SC_RENDER_DEFAULT_ORDER SC_HULL_ORDER_HYBRID
 #define SC_RENDER_DEFAULT_BATCH_HULLS 32
 
 typedef struct sc_render_stats {

@@ -98,9 +98,9 @@ struct sc_renderer {
     double cosine_fovy;      /* the field of view they are for (0: none yet) */
 };
 
-static inline int manual_ert(sc_ert_mode mode)
+static inline int manual_ert(sc_ray_termination mode)
 {
-    return mode == SC_ERT_MANUAL || mode == SC_ERT_MANUAL_BOTH;
+    return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
 }
 
 /* sRGB 0.2, the reference images' background (shade.c), in linear light:

@@ -13,7 +13,7 @@
 
 #include "nurbs.h"
 
-enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8, MAX_DIVISIONS = 64 };
+enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8 };
 
 /* A piece of a Bézier patch being refined: homogeneous points as in
  * sc_bezier_patch, and its rectangle in the patch's [0, 1]². */
@@ -34,44 +34,6 @@ typedef struct builder {
     double tolerance;            /* absolute, world units */
     int max_depth;
 } builder;
-
-/* ---- options ---- */
-
-int sc_hull_desc_parse(const char *text, sc_hull_desc *desc, sc_error *err)
-{
-    memset(desc, 0, sizeof *desc);
-    char *end;
-    if (!strncmp(text, "uniform:", 8)) {
-        long n = strtol(text + 8, &end, 10);
-        if (end == text + 8 || *end || n < 1 || n > MAX_DIVISIONS)
-            return sc_fail(err, NULL, 0,
-                           "hull '%s': uniform:N needs a whole N from 1 to %d", text,
-                           MAX_DIVISIONS);
-        desc->mode = SC_HULL_UNIFORM;
-        desc->divisions = (int)n;
-        return SC_OK;
-    }
-    if (!strncmp(text, "adaptive:", 9)) {
-        double tol = strtod(text + 9, &end);
-        if (end == text + 9 || *end || !(tol > 0) || !(tol < 1))
-            return sc_fail(err, NULL, 0,
-                           "hull '%s': adaptive:TOL needs 0 < TOL < 1 (a fraction of "
-                           "the scene's size)", text);
-        desc->mode = SC_HULL_ADAPTIVE;
-        desc->tolerance = tol;
-        return SC_OK;
-    }
-    return sc_fail(err, NULL, 0, "hull '%s': expected uniform:N or adaptive:TOL", text);
-}
-
-void sc_hull_desc_format(const sc_hull_desc *desc, char *buf, size_t size)
-{
-    if (desc->mode == SC_HULL_UNIFORM)
-        snprintf(buf, size, "uniform:%d", desc->divisions ? desc->divisions : DEFAULT_DIVISIONS);
-    else
-        snprintf(buf, size, "adaptive:%g",
-                 desc->tolerance > 0 ? desc->tolerance : SC_HULL_DEFAULT_TOLERANCE);
-}
 
 /* ---- Bézier pieces ---- */
 
@@ -450,7 +412,7 @@ static int build_surface(builder *b, const sc_scene *scene, int si, sc_hull_rang
         b->patch_index = pi;
         piece p = {.deg_u = patches[pi].deg_u, .deg_v = patches[pi].deg_v,
                    .local = {0, 1, 0, 1}};
-        if (h->desc.mode == SC_HULL_UNIFORM) {
+        if (h->desc.mode == SC_SPLIT_UNIFORM) {
             p.cp = patches[pi].cp;
             status = uniform(b, &p, h->desc.divisions, err);
         } else {

@@ -16,15 +16,11 @@
 #include <stdint.h>
 
 #include "scene.h"
-
-typedef enum sc_hull_mode {
-    SC_HULL_ADAPTIVE = 0,
-    SC_HULL_UNIFORM,
-} sc_hull_mode;
+#include "splinecast_options.h"
 
 /* Zero means default in every field. */
 typedef struct sc_hull_desc {
-    sc_hull_mode mode;
+    sc_hull_split mode;  /* SC_SPLIT_DEFAULT: adaptive */
     int divisions;       /* uniform: n × n sub-patches per Bézier patch (2) */
     double tolerance;    /* adaptive: largest distance of a control point from
                             the bilinear patch through the sub-patch's corners,
@@ -79,11 +75,6 @@ typedef struct sc_hulls {
     double tolerance;    /* adaptive: the flatness bound in world units,
                             fixed when the hulls were built */
 } sc_hulls;
-
-/* "uniform:N" or "adaptive:TOL" (TOL as in sc_hull_desc.tolerance). */
-int sc_hull_desc_parse(const char *text, sc_hull_desc *desc, sc_error *err);
-/* The same syntax back, with the defaults filled in. */
-void sc_hull_desc_format(const sc_hull_desc *desc, char *buf, size_t size);
 
 /* Builds the hulls of every surface of the scene. Collapsed sub-patches (all
  * control points in one point) get no hull; flat ones a thin slab. */

@@ -25,6 +25,16 @@ int sc_surface_drawable(const sc_scene *scene, int i, sc_error *err)
     return SC_OK;
 }
 
+scg_ert sc_key_ert(sc_ray_termination termination)
+{
+    switch (termination == SC_TERMINATION_DEFAULT ? SC_DEFAULT_TERMINATION : termination) {
+    case SC_TERMINATION_CONSERVATIVE: return SCG_ERT_CONSERVATIVE;
+    case SC_TERMINATION_MANUAL: return SCG_ERT_BEFORE;
+    case SC_TERMINATION_MANUAL_BOTH: return SCG_ERT_BOTH;
+    default: return SCG_ERT_NONE;
+    }
+}
+
 void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key)
 {
     sc_key_options defaults;
@@ -40,9 +50,10 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->deg_u = key->deg_v = 0;
     }
     key->rational = s->rational != 0;
-    int tdeg = opts->ignore_trims ? 0 : sc_surface_trim_degree(s);
+    int untrimmed = opts->ignore_trims || opts->trim_method == SC_TRIM_NONE;
+    int tdeg = untrimmed ? 0 : sc_surface_trim_degree(s);
     if (s->nloops > 0 && tdeg > 0) {
-        key->trim = opts->trim_method == SCG_TRIM_NONE ? SCG_TRIM_FAST : opts->trim_method;
+        key->trim = opts->trim_method == SC_TRIM_DEFAULT ? SC_TRIM_FAST : opts->trim_method;
         key->trim_degree = tdeg;
         key->trim_iters = opts->trim_iters > 0 ? opts->trim_iters : SCG_DEFAULT_TRIM_ITERS;
     }
@@ -50,9 +61,9 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->max_iters = opts->max_iters;
     if (opts->tol_milli > 0)
         key->tol_milli = opts->tol_milli;
-    if (opts->start_set)
+    if (opts->start != SC_START_DEFAULT)
         key->start = opts->start;
-    key->ert = opts->ert_set ? opts->ert : SC_KEY_DEFAULT_ERT;
+    key->ert = sc_key_ert(opts->termination);
     key->outputs = opts->outputs ? opts->outputs : SC_KEY_DEFAULT_OUTPUTS;
 }
 

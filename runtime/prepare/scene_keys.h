@@ -15,11 +15,22 @@
  * program takes over. */
 #define SC_UNROLL_MAX_DEGREE 9
 
-/* The early ray termination and outputs of a scene's keys unless asked
- * otherwise: those the renderer draws with by default (manual early ray
- * termination, gl_render.h; the shaded colour and the AOVs), so that `info`,
- * `gen --scene` and `make shaders` name the programs `render` compiles. */
-#define SC_KEY_DEFAULT_ERT SCG_ERT_BEFORE
+/* Early ray termination unless asked otherwise, for the renderer and for
+ * the keys of a scene alike, so that `info`, `gen --scene` and `make
+ * shaders` name the programs `render` compiles. Chosen by measurement
+ * (docs/speed.md, `splinecast bench --ert`). */
+#define SC_DEFAULT_TERMINATION SC_TERMINATION_MANUAL
+
+/* The key's ert field for the early ray termination option. The two are not
+ * one concept: the key says what the program does (ert1: skip the ray
+ * behind the nearest hit so far), while the option also decides what the
+ * renderer does around the programs (culling whole hulls between batches in
+ * the manual modes). This is the one place that maps the one to the other;
+ * SC_TERMINATION_DEFAULT is SC_DEFAULT_TERMINATION. */
+scg_ert sc_key_ert(sc_ray_termination termination);
+
+/* The outputs of a scene's keys unless asked otherwise: those the renderer
+ * draws with by default (the shaded colour and the AOVs). */
 #define SC_KEY_DEFAULT_OUTPUTS (SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV)
 
 typedef struct sc_key_options {
@@ -33,20 +44,18 @@ typedef struct sc_key_options {
     /* 1: ignore trim loops (keys say trim0). Default 0: a trimmed surface
      * asks for trimming with its highest trim-curve degree. */
     int ignore_trims;
-    /* Trim method of trimmed surfaces: SCG_TRIM_FAST (the default, also
-     * for SCG_TRIM_NONE), SCG_TRIM_CLIP or SCG_TRIM_LEFT; and the cap on
-     * clipping iterations per crossing, 0 meaning SCG_DEFAULT_TRIM_ITERS.
+    /* Trim method of trimmed surfaces (SC_TRIM_DEFAULT: fast; SC_TRIM_NONE
+     * as ignore_trims); and the cap on clipping iterations per crossing,
+     * 0 meaning SCG_DEFAULT_TRIM_ITERS.
      * docs/trimming.md has the measurements behind the defaults. */
-    scg_trim_mode trim_method;
+    sc_trim_method trim_method;
     int trim_iters;
     /* The remaining fields are copied into every key; 0 means the defaults
      * of scg_key_default (key.h: cp, it6, tol0.05) and the two above. */
     int max_iters;
     int tol_milli;
-    bool start_set;           /* false: SCG_DEFAULT_START */
-    scg_start start;
-    bool ert_set;             /* false: SC_KEY_DEFAULT_ERT */
-    scg_ert ert;
+    sc_start start;           /* SC_START_DEFAULT: SCG_DEFAULT_START */
+    sc_ray_termination termination; /* keys' ert through sc_key_ert */
     unsigned outputs;         /* 0: SC_KEY_DEFAULT_OUTPUTS */
     /* 0 (default): a surface the GPU programs cannot draw makes
      * sc_scene_keys fail; 1: it gets no key and a warning through sc_log,

@@ -1,0 +1,34 @@
+/* options.h — the spellings users type for the options (`--view iters`,
+ * `--ert manual`, `--order hybrid`, `--trim fast:16`, `--hulls uniform:2`,
+ * `--backend egl`), read into the public enums of splinecast_options.h and
+ * printed back. Spellings are the command line's business: the library
+ * takes enums. A bad spelling fails with a message that lists the good
+ * ones. */
+#ifndef SC_CLI_OPTIONS_H
+#define SC_CLI_OPTIONS_H
+
+#include "splinecast_base.h"
+#include "splinecast_options.h"
+
+/* shade, uv, iters, normal, depth, hull. */
+int cli_show_parse(const char *text, sc_show *out, sc_error *err);
+/* clip, left or fast, optionally ":ITERS" (1 … SC_MAX_TRIM_ITERS); *iters is left alone
+ * when no cap is given. */
+int cli_trim_parse(const char *text, sc_trim_method *out, int *iters, sc_error *err);
+/* none, conservative, manual, manual-both; and back ("default" for
+ * SC_TERMINATION_DEFAULT). */
+int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *err);
+const char *cli_termination_name(sc_ray_termination termination);
+/* front-to-back, by-program, hybrid; and back. */
+int cli_order_parse(const char *text, sc_hull_order *out, sc_error *err);
+const char *cli_order_name(sc_hull_order order);
+/* egl, osmesa, default; and back. */
+int cli_backend_parse(const char *text, sc_backend *out, sc_error *err);
+const char *cli_backend_name(sc_backend backend);
+/* "uniform:N" (N from 1 to
+ * SC_MAX_HULL_DIVISIONS) or "adaptive:TOL" (0 < TOL < 1, a fraction
+ * of the scene's size); the other mode's number is set to 0 (default). */
+int cli_hulls_parse(const char *text, sc_hull_split *split, int *divisions, double *tolerance,
+                    sc_error *err);
+
+#endif

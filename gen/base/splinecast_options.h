@@ -1,0 +1,94 @@
+/* splinecast_options.h — the options' one vocabulary: the enums a program
+ * passes in splinecast.h's desc structs, which are also the values the
+ * runtime works with and, where the compiler needs them (start, trim
+ * method), the fields of a variant key. They live under gen/base so that
+ * every layer (gen/, the runtime's folders, the public header) sees the same
+ * types without a translation between them; splinecast.h includes this
+ * header and `make install` installs it beside it. Zero means default in
+ * every enum a desc carries. */
+#ifndef SPLINECAST_OPTIONS_H
+#define SPLINECAST_OPTIONS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Limits of the options' numbers: desc fields outside them are refused. */
+#define SC_MAX_TRIM_ITERS 64       /* clipping iterations per trim crossing */
+#define SC_MAX_HULL_DIVISIONS 64   /* uniform hulls: sub-patches per side */
+
+/* Where Newton's method starts (keys: mid, cp, view). */
+typedef enum sc_start {
+    SC_START_DEFAULT = 0,  /* cpmap */
+    SC_START_MID,          /* Newton starts at the middle of the sub-patch */
+    SC_START_CPMAP,        /* at the control-point parameters interpolated
+                              over the hull */
+    SC_START_VIEW          /* view-dependent: keys parse it, but it is not
+                              implemented, so every call refuses it */
+} sc_start;
+
+/* How trimmed surfaces are trimmed (keys: fastNiC, clipNiC, leftNiC, trim0). */
+typedef enum sc_trim_method {
+    SC_TRIM_DEFAULT = 0,   /* fast */
+    SC_TRIM_FAST,          /* a uniform grid: only the pieces in the pixel's cell */
+    SC_TRIM_CLIP,          /* every piece, two-sided Bézier clipping */
+    SC_TRIM_LEFT,          /* every piece, left-only Bézier clipping */
+    SC_TRIM_NONE           /* trim loops ignored: the keys of untrimmed
+                              surfaces (trim0), as ignore_trims asks */
+} sc_trim_method;
+
+/* Early ray termination (default: manual). */
+typedef enum sc_ray_termination {
+    SC_TERMINATION_DEFAULT = 0,
+    SC_TERMINATION_NONE,        /* every hull fragment runs the intersection */
+    SC_TERMINATION_CONSERVATIVE,/* depth written with depth_greater, so that
+                                   a GPU may keep early depth testing */
+    SC_TERMINATION_MANUAL,      /* the intersection is skipped behind the
+                                   nearest hit so far, and whole hulls behind
+                                   it are culled between batches */
+    SC_TERMINATION_MANUAL_BOTH  /* also a hit behind it is dropped before
+                                   trimming and shading */
+} sc_ray_termination;
+
+/* What the image shows. shade, uv, iters and hull come from the programs;
+ * normal and depth are drawn from the AOVs. */
+typedef enum sc_show {
+    SC_SHOW_SHADE = 0,         /* shaded colour (default) */
+    SC_SHOW_UV,                /* (u, v) as colour */
+    SC_SHOW_ITERS,             /* iteration count */
+    SC_SHOW_NORMAL,            /* normal as colour */
+    SC_SHOW_DEPTH,             /* distance as grey */
+    SC_SHOW_HULL               /* each proxy hull in a colour of its own: the
+                                  surface inside it lit, the rest of its face
+                                  dim (early termination off; the AOVs hold
+                                  only the hits no nearer hull face hides) */
+} sc_show;
+
+/* How patches are cut into sub-patches, each bounded by a proxy hull. */
+typedef enum sc_hull_split {
+    SC_SPLIT_DEFAULT = 0,      /* adaptive */
+    SC_SPLIT_ADAPTIVE,         /* until the control mesh is flat within
+                                  hull_tolerance */
+    SC_SPLIT_UNIFORM           /* hull_divisions × hull_divisions per patch */
+} sc_hull_split;
+
+/* The order hulls are drawn in each frame (default: hybrid). */
+typedef enum sc_hull_order {
+    SC_HULL_ORDER_DEFAULT = 0,
+    SC_HULL_ORDER_FRONT_TO_BACK,   /* strictly by nearest hull depth */
+    SC_HULL_ORDER_BY_PROGRAM,      /* grouped by program, front to back in one */
+    SC_HULL_ORDER_HYBRID           /* depth buckets, by program in a bucket */
+} sc_hull_order;
+
+/* Where the GL context comes from. */
+typedef enum sc_backend {
+    SC_BACKEND_DEFAULT = 0,    /* EGL, falling back to OSMesa */
+    SC_BACKEND_EGL,            /* EGL; falls back to OSMesa with a warning */
+    SC_BACKEND_OSMESA
+} sc_backend;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

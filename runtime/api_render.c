@@ -1,0 +1,488 @@
+/* api_render.c — the public interface's GL side (splinecast.h): contexts,
+ * programs by key, renderers, frames drawn on the GPU or by the CPU
+ * reference, and what is done with frames (PNG and AOV files,
+ * comparison). Handles, checks and scenes are in api.c. */
+#include "api_private.h"
+
+/* ---- contexts and programs ---- */
+
+int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *err)
+{
+    static const sc_context_desc defaults = {0};
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    if (!desc)
+        desc = &defaults;
+    if (sc_api_check_enum(desc->backend, SC_BACKEND_OSMESA + 1, "sc_context_desc.backend", err))
+        return SC_FAIL;
+    sc_gl_context_desc gl_desc = {.backend = desc->backend, .debug = desc->debug};
+    context_object *c = sc_alloc(1, sizeof *c);
+    if (sc_gl_context_create(&gl_desc, &c->gl, err) != SC_OK) {
+        sc_api_current_context = NULL;  /* a failed attempt may have changed it */
+        free(c);
+        return SC_FAIL;
+    }
+    sc_api_current_context = c;  /* creating made it current */
+    c->programs = sc_program_cache_create(sc_gl_context_gl(c->gl));
+    if ((out->id = sc_api_pool_insert(&sc_api_contexts, c, err)) == 0) {
+        sc_program_cache_destroy(c->programs);
+        sc_gl_context_destroy(c->gl);
+        sc_api_current_context = NULL;
+        free(c);
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
+
+static void destroy_renderer_object(renderer_object *r)
+{
+    if (sc_api_make_current(r->context, NULL) == SC_OK)
+        sc_renderer_destroy(r->renderer);
+    sc_api_release_scene(r->scene);
+    free(r);
+}
+
+void sc_destroy_context(sc_context_id ctx)
+{
+    context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, NULL);
+    if (!c)
+        return;
+    for (int i = 0; i < sc_api_renderers.count; i++) {
+        renderer_object *r = sc_api_renderers.slots[i].object;
+        if (r && r->context == c) {
+            sc_api_pool_remove(&sc_api_renderers, sc_api_slot_id(&sc_api_renderers, i));
+            destroy_renderer_object(r);
+        }
+    }
+    for (int i = 0; i < sc_api_programs.count; i++) {
+        program_object *p = sc_api_programs.slots[i].object;
+        if (p && p->context == c) {
+            sc_api_pool_remove(&sc_api_programs, sc_api_slot_id(&sc_api_programs, i));
+            free(p);
+        }
+    }
+    if (sc_api_make_current(c, NULL) == SC_OK)
+        sc_program_cache_destroy(c->programs);
+    sc_gl_context_destroy(c->gl);
+    sc_api_current_context = NULL;
+    sc_api_pool_remove(&sc_api_contexts, ctx.id);
+    free(c);
+}
+
+int sc_query_context_info(sc_context_id ctx, sc_context_info *info, sc_error *err)
+{
+    context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, err);
+    if (!c)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    memset(info, 0, sizeof *info);
+    info->backend = sc_gl_context_backend(c->gl);
+    snprintf(info->description, sizeof info->description, "%s",
+             sc_gl_context_description(c->gl));
+    return SC_OK;
+}
+
+int sc_make_program(sc_context_id ctx, const char *key, sc_program_id *out, sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, err);
+    if (!c || sc_check_key(key, err) != SC_OK || sc_api_make_current(c, err) != SC_OK)
+        return SC_FAIL;
+    scg_key parsed;
+    scg_key_parse(key, &parsed, NULL);
+    sc_program program;
+    if (sc_program_for_key(c->programs, &parsed, &program, err) != SC_OK)
+        return SC_FAIL;
+    for (int i = 0; i < sc_api_programs.count; i++) {
+        const program_object *p = sc_api_programs.slots[i].object;
+        if (p && p->context == c && p->program.id == program.id) {
+            out->id = sc_api_slot_id(&sc_api_programs, i);
+            return SC_OK;
+        }
+    }
+    program_object *p = sc_alloc(1, sizeof *p);
+    p->context = c;
+    p->program = program;
+    if ((out->id = sc_api_pool_insert(&sc_api_programs, p, err)) == 0) {
+        free(p);
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
+
+int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error *err)
+{
+    program_object *p = sc_api_pool_get(&sc_api_programs, program.id, err);
+    if (!p)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    memset(info, 0, sizeof *info);
+    sc_program_cache *cache = p->context->programs;
+    scg_key_format(sc_program_key(cache, p->program), info->key, sizeof info->key);
+    info->gl_program = sc_program_gl_name(cache, p->program);
+    sc_program_times(cache, p->program, &info->generate_ms, &info->compile_ms);
+    return SC_OK;
+}
+
+/* ---- renderers ---- */
+
+static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *err)
+{
+    memset(r, 0, sizeof *r);
+    if (sc_api_check_enum(d->hull_split, SC_SPLIT_UNIFORM + 1, "sc_renderer_desc.hull_split", err) ||
+        sc_api_check_int(d->hull_divisions, 0, SC_MAX_HULL_DIVISIONS, "sc_renderer_desc.hull_divisions", err) ||
+        sc_api_check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
+        sc_api_check_enum(d->start, SC_START_CPMAP + 1, "sc_renderer_desc.start", err) ||
+        sc_api_check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
+        sc_api_check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
+        sc_api_check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
+                  err) ||
+        sc_api_check_enum(d->trim, SC_TRIM_NONE + 1, "sc_renderer_desc.trim", err) ||
+        sc_api_check_enum(d->termination, SC_TERMINATION_MANUAL_BOTH + 1,
+                   "sc_renderer_desc.termination", err) ||
+        sc_api_check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
+        sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
+        sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
+        sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
+        return SC_FAIL;
+    if (!(d->hull_tolerance >= 0 && d->hull_tolerance < 1))
+        return sc_api_invalid(err, "sc_renderer_desc.hull_tolerance", PROBLEM_RANGE,
+                       "%g (0 for the default, or a fraction of the scene's size below 1)",
+                       d->hull_tolerance);
+    r->hulls.mode = d->hull_split;
+    r->hulls.divisions = d->hull_divisions;
+    r->hulls.tolerance = d->hull_tolerance;
+    r->hulls.max_depth = d->hull_max_depth;
+    r->start = d->start;
+    r->max_iters = d->max_iters;
+    r->view = d->show;
+    r->generic = d->generic != 0;
+    r->unroll_max_degree = d->unroll_max_degree;
+    r->trim_method = d->trim;
+    r->trim_iters = d->trim_iters;
+    r->ert = d->termination;
+    r->order = d->order;
+    r->batch_hulls = d->batch_hulls;
+    return SC_OK;
+}
+
+int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
+                     sc_renderer_id *out, sc_error *err)
+{
+    static const sc_renderer_desc defaults = {0};
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, err);
+    scene_object *s = c ? sc_api_pool_get(&sc_api_scenes, scene.id, err) : NULL;
+    sc_render_desc internal;
+    if (!s || render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
+        sc_api_make_current(c, err) != SC_OK)
+        return SC_FAIL;
+    /* The context's cache: sc_make_program on the renderer's keys returns
+     * the very programs it draws with. */
+    internal.programs = c->programs;
+    renderer_object *r = sc_alloc(1, sizeof *r);
+    r->context = c;
+    r->scene = s;
+    if (sc_renderer_create(sc_gl_context_gl(c->gl), &s->scene, &internal, &r->renderer, err) !=
+        SC_OK) {
+        free(r);
+        return SC_FAIL;
+    }
+    s->users++;
+    if ((out->id = sc_api_pool_insert(&sc_api_renderers, r, err)) == 0) {
+        destroy_renderer_object(r);
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
+
+void sc_destroy_renderer(sc_renderer_id renderer)
+{
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, NULL);
+    if (!r)
+        return;
+    sc_api_pool_remove(&sc_api_renderers, renderer.id);
+    destroy_renderer_object(r);
+}
+
+int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, int *count,
+                           sc_error *err)
+{
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    if (!r)
+        return SC_FAIL;
+    int nsurfaces = r->scene->scene.nsurfaces, n = 0;
+    char (*texts)[SCG_KEY_MAX] = sc_alloc((size_t)(nsurfaces ? nsurfaces : 1), SCG_KEY_MAX);
+    for (int s = 0; s < nsurfaces; s++) {
+        scg_key_format(sc_renderer_surface_key(r->renderer, s), texts[n], SCG_KEY_MAX);
+        int seen = 0;
+        for (int k = 0; k < n && !seen; k++)
+            seen = !strcmp(texts[k], texts[n]);
+        n += !seen;
+    }
+    int status = sc_api_count_keys((const char (*)[SCG_KEY_MAX])texts, n, keys, capacity, count, err);
+    free(texts);
+    return status;
+}
+
+int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err)
+{
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    if (!r)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    sc_render_stats stats;
+    sc_renderer_stats(r->renderer, &stats);
+    *info = (sc_renderer_info){
+        .programs = stats.programs,
+        .hulls = stats.hulls,
+        .triangles = stats.triangles,
+        .gpu_bytes = stats.gpu_bytes,
+        .uploaded_bytes = stats.bytes_uploaded,
+        .compile_ms = stats.compile_ms,
+    };
+    return SC_OK;
+}
+
+/* The internal camera of a public one, defaults filled from the scene. */
+static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
+                       sc_error *err)
+{
+    static const sc_camera_desc defaults = {0};
+    if (!desc)
+        desc = &defaults;
+    sc_camera_default(scene, cam);
+    if (desc->text) {
+        if (sc_camera_parse(desc->text, cam, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        int given = 0;
+        for (int c = 0; c < 3; c++)
+            given |= desc->eye[c] != 0 || desc->target[c] != 0;
+        if (given) {
+            memcpy(cam->eye, desc->eye, sizeof cam->eye);
+            memcpy(cam->target, desc->target, sizeof cam->target);
+        }
+        if (desc->fovy_deg != 0)
+            cam->fovy_deg = desc->fovy_deg;
+    }
+    if (sc_api_check_int(desc->width, 0, 16384, "sc_camera_desc.width", err) ||
+        sc_api_check_int(desc->height, 0, 16384, "sc_camera_desc.height", err))
+        return SC_FAIL;
+    cam->width = desc->width ? desc->width : 512;
+    cam->height = desc->height ? desc->height : 512;
+    double dist2 = 0;
+    int finite = isfinite(cam->fovy_deg);
+    for (int c = 0; c < 3; c++) {
+        finite &= isfinite(cam->eye[c]) && isfinite(cam->target[c]);
+        dist2 += (cam->target[c] - cam->eye[c]) * (cam->target[c] - cam->eye[c]);
+    }
+    if (!finite || !(dist2 > 0) || !(cam->fovy_deg > 0 && cam->fovy_deg < 180))
+        return sc_api_invalid(err, "sc_camera_desc", PROBLEM_CAMERA,
+                       "the eye must differ from the target and fovy_deg lie in (0, 180)");
+    return SC_OK;
+}
+
+static void expand_to_rgba(const sc_image *rgb, sc_image *rgba)
+{
+    sc_image_alloc(rgba, rgb->width, rgb->height, 4);
+    size_t n = (size_t)rgb->width * (size_t)rgb->height;
+    for (size_t p = 0; p < n; p++) {
+        memcpy(rgba->pixels + 4 * p, rgb->pixels + (size_t)rgb->channels * p, 3);
+        rgba->pixels[4 * p + 3] = rgb->channels == 4 ? rgb->pixels[4 * p + 3] : 255;
+    }
+}
+
+static int add_frame(frame_object *f, sc_frame_id *out, sc_error *err)
+{
+    if ((out->id = sc_api_pool_insert(&sc_api_frames, f, err)) != 0)
+        return SC_OK;
+    sc_image_free(&f->rgba);
+    sc_aov_free(&f->aov);
+    free(f);
+    return SC_FAIL;
+}
+
+int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id *out,
+              sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    sc_camera cam;
+    if (!r || make_camera(camera, &r->scene->scene, &cam, err) != SC_OK ||
+        sc_api_make_current(r->context, err) != SC_OK)
+        return SC_FAIL;
+    frame_object *f = sc_alloc(1, sizeof *f);
+    double t0 = sc_now();
+    sc_image image = {0};
+    if (sc_renderer_draw(r->renderer, &cam, err) != SC_OK ||
+        sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
+        sc_image_free(&image);
+        sc_aov_free(&f->aov);
+        free(f);
+        return SC_FAIL;
+    }
+    f->render_ms = 1e3 * (sc_now() - t0);
+    if (image.channels == 4) {
+        f->rgba = image;
+    } else {
+        expand_to_rgba(&image, &f->rgba);
+        sc_image_free(&image);
+    }
+    return add_frame(f, out, err);
+}
+
+int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
+                        const sc_reference_desc *desc, sc_frame_id *out, sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    sc_camera cam;
+    if (!s || make_camera(camera, &s->scene, &cam, err) != SC_OK)
+        return SC_FAIL;
+    if (desc && sc_api_check_int(desc->threads, 0, 1024, "sc_reference_desc.threads", err))
+        return SC_FAIL;
+    sc_refcast *rc;
+    if (sc_refcast_prepare(&s->scene, &rc, err) != SC_OK)
+        return SC_FAIL;
+    frame_object *f = sc_alloc(1, sizeof *f);
+    sc_refcast_options opt = {.threads = desc ? desc->threads : 0};
+    double t0 = sc_now();
+    int status = sc_refcast_render(rc, &cam, &opt, &f->aov, NULL, err);
+    sc_refcast_free(rc);
+    if (status != SC_OK) {
+        sc_aov_free(&f->aov);
+        free(f);
+        return SC_FAIL;
+    }
+    f->render_ms = 1e3 * (sc_now() - t0);
+    sc_image rgb;
+    sc_shade_aov(&f->aov, &s->scene, &rgb);
+    expand_to_rgba(&rgb, &f->rgba);
+    sc_image_free(&rgb);
+    return add_frame(f, out, err);
+}
+
+/* ---- frames ---- */
+
+int sc_load_frame(const char *aov_path, sc_frame_id *out, sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    if (!aov_path)
+        return sc_api_invalid(err, "aov_path", PROBLEM_NULL, NULL);
+    frame_object *f = sc_alloc(1, sizeof *f);
+    if (sc_aov_read(aov_path, &f->aov, err) != SC_OK) {
+        sc_aov_free(&f->aov);
+        free(f);
+        return SC_FAIL;
+    }
+    sc_image rgb;
+    sc_shade_aov(&f->aov, NULL, &rgb);
+    expand_to_rgba(&rgb, &f->rgba);
+    sc_image_free(&rgb);
+    return add_frame(f, out, err);
+}
+
+void sc_destroy_frame(sc_frame_id frame)
+{
+    frame_object *f = sc_api_pool_get(&sc_api_frames, frame.id, NULL);
+    if (!f)
+        return;
+    sc_api_pool_remove(&sc_api_frames, frame.id);
+    sc_image_free(&f->rgba);
+    sc_aov_free(&f->aov);
+    free(f);
+}
+
+int sc_query_frame_info(sc_frame_id frame, sc_frame_info *info, sc_error *err)
+{
+    frame_object *f = sc_api_pool_get(&sc_api_frames, frame.id, err);
+    if (!f)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    const sc_aov *a = &f->aov;
+    *info = (sc_frame_info){
+        .width = a->width,
+        .height = a->height,
+        .fovy_deg = a->camera.fovy_deg,
+        .rgba = f->rgba.pixels,
+        .surface = a->surface,
+        .uv = a->uv,
+        .t = a->t,
+        .point = a->point,
+        .normal = a->normal,
+        .iters = a->has_iters ? a->iters : NULL,
+        .render_ms = f->render_ms,
+    };
+    memcpy(info->eye, a->camera.eye, sizeof info->eye);
+    memcpy(info->target, a->camera.target, sizeof info->target);
+    return SC_OK;
+}
+
+int sc_save_png(sc_frame_id frame, const char *path, sc_error *err)
+{
+    frame_object *f = sc_api_pool_get(&sc_api_frames, frame.id, err);
+    if (!f)
+        return SC_FAIL;
+    if (!path)
+        return sc_api_invalid(err, "path", PROBLEM_NULL, NULL);
+    return sc_png_write(path, &f->rgba, err);
+}
+
+int sc_save_aov(sc_frame_id frame, const char *path, sc_error *err)
+{
+    frame_object *f = sc_api_pool_get(&sc_api_frames, frame.id, err);
+    if (!f)
+        return SC_FAIL;
+    if (!path)
+        return sc_api_invalid(err, "path", PROBLEM_NULL, NULL);
+    return sc_aov_write(path, &f->aov, err);
+}
+
+int sc_compare_frames(sc_frame_id reference, sc_frame_id test, sc_comparison *out,
+                      sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    memset(out, 0, sizeof *out);
+    frame_object *ref = sc_api_pool_get(&sc_api_frames, reference.id, err);
+    frame_object *tst = ref ? sc_api_pool_get(&sc_api_frames, test.id, err) : NULL;
+    sc_accuracy acc;
+    if (!tst || sc_accuracy_compare(&ref->aov, &tst->aov, &acc, err) != SC_OK)
+        return SC_FAIL;
+    *out = (sc_comparison){
+        .reference_hits = acc.ref_hits,
+        .test_hits = acc.test_hits,
+        .both_hit = acc.both_hit,
+        .holes = acc.holes,
+        .false_hits = acc.false_hits,
+        .off = acc.off,
+        .coverage_pct = acc.coverage_pct,
+        .fail_pct = acc.fail_pct,
+        .pos_median_px = acc.pos_median_px,
+        .pos_max_px = acc.pos_max_px,
+        .normal_mean_deg = acc.normal_mean_deg,
+        .normal_max_deg = acc.normal_max_deg,
+        .has_iters = acc.has_iters,
+        .iters_mean = acc.iters_mean,
+        .iters_max = acc.iters_max,
+    };
+    sc_accuracy_format(&acc, out->line, sizeof out->line);
+    return SC_OK;
+}
+
