@@ -25,7 +25,7 @@
 #include "scene_keys.h"
 #include "shade.h"
 
-/* ---- argument problems: one list (problem_text in api.c) ---- */
+/* ---- argument problems: one list (problem_text in api_objects.c) ---- */
 
 typedef enum problem {
     PROBLEM_NULL,

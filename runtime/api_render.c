@@ -1,7 +1,8 @@
 /* api_render.c — the public interface's GL side (splinecast.h): contexts,
  * programs by key, renderers, frames drawn on the GPU or by the CPU
  * reference, and what is done with frames (PNG and AOV files,
- * comparison). Handles, checks and scenes are in api.c. */
+ * comparison), and sc_shutdown. Scenes, keys and generation are in api.c;
+ * handles and checks in api_objects.c. */
 #include "api_private.h"
 
 /* ---- contexts and programs ---- */
@@ -486,3 +487,31 @@ int sc_compare_frames(sc_frame_id reference, sc_frame_id test, sc_comparison *ou
     return SC_OK;
 }
 
+/* ---- shutdown ---- */
+
+static void destroy_all(pool *p, void (*destroy)(uint32_t id))
+{
+    for (int i = 0; i < p->count; i++)
+        if (p->slots[i].object)
+            destroy(sc_api_slot_id(p, i));
+    free(p->slots);
+    p->slots = NULL;
+    p->count = 0;
+}
+
+static void destroy_frame_id(uint32_t id) { sc_destroy_frame((sc_frame_id){id}); }
+static void destroy_renderer_id(uint32_t id) { sc_destroy_renderer((sc_renderer_id){id}); }
+static void destroy_context_id(uint32_t id) { sc_destroy_context((sc_context_id){id}); }
+static void destroy_scene_id(uint32_t id) { sc_destroy_scene((sc_scene_id){id}); }
+
+void sc_shutdown(void)
+{
+    destroy_all(&sc_api_frames, destroy_frame_id);
+    destroy_all(&sc_api_renderers, destroy_renderer_id);
+    /* Contexts take their programs with them. */
+    destroy_all(&sc_api_contexts, destroy_context_id);
+    free(sc_api_programs.slots);
+    sc_api_programs.slots = NULL;
+    sc_api_programs.count = 0;
+    destroy_all(&sc_api_scenes, destroy_scene_id);
+}

@@ -1,0 +1,180 @@
+/* api_objects.c — what both files of the public interface use (api.c,
+ * api_render.c): the one list of argument problems and the checks that
+ * report them, and the pools of objects named by typed handles. A file of
+ * its own so that the two call it and not each other. */
+#include "api_private.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- argument problems: one list ---- */
+
+static const char *const problem_text[] = {
+    [PROBLEM_NULL] = "is NULL",
+    [PROBLEM_ZERO_HANDLE] = "is the zero handle (never made)",
+    [PROBLEM_STALE_HANDLE] = "names an object that was destroyed",
+    [PROBLEM_UNKNOWN_HANDLE] = "names no object ever made",
+    [PROBLEM_POOL_FULL] = "cannot be made: too many live objects of its kind",
+    [PROBLEM_SCENE_SOURCE] = "gives both path and text: give one",
+    [PROBLEM_SCENE_NAME] = "needs a name whose extension picks the reader (.bpt, .obj, .igs)",
+    [PROBLEM_ENUM] = "is not a value of its enum",
+    [PROBLEM_RANGE] = "is out of range",
+    [PROBLEM_CAMERA] = "is not a usable view",
+    [PROBLEM_CONTEXT] = "belongs to a different context",
+};
+
+/* "WHAT PROBLEM: detail". */
+int sc_api_invalid(sc_error *err, const char *what, problem p, const char *fmt, ...)
+{
+    char detail[256] = "";
+    if (fmt) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(detail, sizeof detail, fmt, ap);
+        va_end(ap);
+    }
+    return sc_fail(err, NULL, 0, "%s %s%s%s", what, problem_text[p], detail[0] ? ": " : "",
+                   detail);
+}
+
+int sc_api_check_enum(int value, int count, const char *what, sc_error *err)
+{
+    if (value < 0 || value >= count)
+        return sc_api_invalid(err, what, PROBLEM_ENUM, "%d", value);
+    return SC_OK;
+}
+
+int sc_api_check_int(int value, int lo, int hi, const char *what, sc_error *err)
+{
+    if (value < lo || value > hi)
+        return sc_api_invalid(err, what, PROBLEM_RANGE, "%d (%d to %d)", value, lo, hi);
+    return SC_OK;
+}
+
+/* Tolerances in pixel footprints: 0 for the default, else 0.001 to 100,
+ * the range `splinecast render --tol` takes. */
+int sc_api_check_tolerance(double tol, const char *what, int *tol_milli, sc_error *err)
+{
+    if (tol == 0) {
+        *tol_milli = 0;
+        return SC_OK;
+    }
+    if (!(tol >= 0.001 && tol <= 100))
+        return sc_api_invalid(err, what, PROBLEM_RANGE, "%g (0 for the default, or 0.001 to 100)", tol);
+    *tol_milli = (int)lround(tol * 1000);
+    return SC_OK;
+}
+
+/* ---- pools ---- */
+
+pool sc_api_scenes = {"scene", 0, NULL};
+pool sc_api_contexts = {"context", 0, NULL};
+pool sc_api_programs = {"program", 0, NULL};
+pool sc_api_renderers = {"renderer", 0, NULL};
+pool sc_api_frames = {"frame", 0, NULL};
+
+uint32_t sc_api_slot_id(const pool *p, int index)
+{
+    return (uint32_t)p->slots[index].generation << 16 | (uint32_t)(index + 1);
+}
+
+/* Stores object and returns its id, or 0 (err filled) when the pool is full. */
+uint32_t sc_api_pool_insert(pool *p, void *object, sc_error *err)
+{
+    int i = 0;
+    while (i < p->count && p->slots[i].object)
+        i++;
+    if (i == p->count) {
+        if (p->count == POOL_MAX_SLOTS) {
+            sc_api_invalid(err, p->kind, PROBLEM_POOL_FULL, "%d", POOL_MAX_SLOTS);
+            return 0;
+        }
+        p->slots = sc_realloc(p->slots, (size_t)p->count + 1, sizeof *p->slots);
+        p->slots[p->count++] = (slot){NULL, 1};
+    }
+    p->slots[i].object = object;
+    return sc_api_slot_id(p, i);
+}
+
+static int slot_index(const pool *p, uint32_t id)
+{
+    int index = (int)(id & 0xffff) - 1;
+    if (index < 0 || index >= p->count || !p->slots[index].object ||
+        p->slots[index].generation != id >> 16)
+        return -1;
+    return index;
+}
+
+/* The object of a handle, or NULL with err filled. */
+void *sc_api_pool_get(const pool *p, uint32_t id, sc_error *err)
+{
+    char what[48];
+    snprintf(what, sizeof what, "%s handle", p->kind);
+    if (id == 0) {
+        sc_api_invalid(err, what, PROBLEM_ZERO_HANDLE, NULL);
+        return NULL;
+    }
+    int index = slot_index(p, id);
+    if (index < 0) {
+        /* A slot's generation grows when its object is destroyed: an older
+         * one named an object of that slot, a later one was never given. */
+        int i = (int)(id & 0xffff) - 1;
+        int destroyed = i >= 0 && i < p->count && id >> 16 < p->slots[i].generation;
+        sc_api_invalid(err, what, destroyed ? PROBLEM_STALE_HANDLE : PROBLEM_UNKNOWN_HANDLE, "0x%08x",
+                (unsigned)id);
+        return NULL;
+    }
+    return p->slots[index].object;
+}
+
+/* Frees the slot; its next object gets a new generation (never 0, so that
+ * no live id is 0). */
+void sc_api_pool_remove(pool *p, uint32_t id)
+{
+    int index = slot_index(p, id);
+    if (index < 0)
+        return;
+    p->slots[index].object = NULL;
+    if (++p->slots[index].generation == 0)
+        p->slots[index].generation = 1;
+}
+
+/* ---- objects ---- */
+
+/* The context whose GL calls are current, so that switching costs a call
+ * only when it changes. */
+context_object *sc_api_current_context;
+
+int sc_api_make_current(context_object *c, sc_error *err)
+{
+    if (c == sc_api_current_context)
+        return SC_OK;
+    if (sc_gl_context_make_current(c->gl, err) != SC_OK)
+        return SC_FAIL;
+    sc_api_current_context = c;
+    return SC_OK;
+}
+
+void sc_api_release_scene(scene_object *s)
+{
+    if (--s->users == 0 && s->orphaned) {
+        sc_scene_free(&s->scene);
+        free(s);
+    }
+}
+
+int sc_api_count_keys(const char (*texts)[SCG_KEY_MAX], int n, sc_key *keys, int capacity,
+                      int *count, sc_error *err)
+{
+    if (!count)
+        return sc_api_invalid(err, "count", PROBLEM_NULL, NULL);
+    if (capacity < 0 || (capacity > 0 && !keys))
+        return sc_api_invalid(err, "capacity", PROBLEM_RANGE, "%d with keys %s", capacity,
+                       keys ? "given" : "NULL");
+    for (int k = 0; k < n && k < capacity; k++)
+        memcpy(keys[k].text, texts[k], SC_KEY_SIZE);
+    *count = n;
+    return SC_OK;
+}
