@@ -1,13 +1,19 @@
-/* emit_glsl.h — the GLSL emitter: prints an optimised IR program as a
- * complete GLSL 4.50 core fragment program (ray from the interpolated
- * inputs, the intersection function, discard on a miss, gl_FragDepth from
- * the hit, shading, AOVs and debug views), and prints the vertex program
- * that draws the hulls. Templates (templates/) lay the files out; the
- * emitter decides what goes into their slots. Every file begins with a
- * provenance header (generator version, key, options) and no timestamp, so
- * the same key always gives the same bytes.
- *
- * Also the whole pipeline for one key: build, optimise, emit, validate. */
+/* emit_glsl.h — the GLSL emitter, in three files:
+ *   emit_glsl.c     prints an optimised IR program as the intersection
+ *                   function;
+ *   assemble_glsl.c lays out the complete GLSL 4.50 core programs around
+ *                   it: the fragment program (declarations, the call, what
+ *                   a miss does, gl_FragDepth, shading, AOVs and debug
+ *                   views) and the vertex program that draws the hulls.
+ *                   Templates (templates/) lay the files out; the emitter
+ *                   decides what goes into their slots, and every
+ *                   declaration comes from the shader contract
+ *                   (shader_contract.h). Every file begins with a
+ *                   provenance header (generator version, key, options) and
+ *                   no timestamp, so the same key always gives the same
+ *                   bytes;
+ *   generate.c      the whole pipeline for one key: build, optimise, emit,
+ *                   validate. */
 #ifndef SCG_EMIT_GLSL_H
 #define SCG_EMIT_GLSL_H
 
@@ -18,19 +24,26 @@
 
 #define SCG_GENERATOR_VERSION "splinecast-gen 1.0"
 
-/* Fragment outputs (colour attachments) the runtime binds with
- * glDrawBuffers; only those the key's outputs ask for are declared. */
-enum {
-    SCG_FRAG_OUT_COLOUR = 0,    /* vec4 sc_colour: shaded colour (shade) */
-    SCG_FRAG_OUT_SURFACE = 1,   /* int sc_aov_surface (aov, R32I) */
-    SCG_FRAG_OUT_UVT = 2,       /* vec4 sc_aov_uvt: u, v, world t, iterations */
-    SCG_FRAG_OUT_POINT = 3,     /* vec4 sc_aov_point: world point, 1 */
-    SCG_FRAG_OUT_NORMAL = 4,    /* vec4 sc_aov_normal: world normal facing the
-                                   viewer, 0 */
-    SCG_FRAG_OUT_ITERS = 5,     /* vec4 sc_view_iters (iters debug view) */
-    SCG_FRAG_OUT_UV = 6,        /* vec4 sc_view_uv (uv debug view) */
-    SCG_FRAG_OUT_HULL = 7       /* vec4 sc_view_hull (hull debug view) */
-};
+/* ---- emit_glsl.c ---- */
+
+/* Only the intersection function (`void sc_intersect(out …)`), as it appears
+ * in the fragment program. */
+int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error *err);
+
+/* Which of the IR's slots a program reads (inputs, uniforms, textures) and
+ * which results it writes: only those are declared. */
+typedef struct scg_program_use {
+    int inputs[SCG_INPUT_COUNT];
+    int uniforms[SCG_UNIFORM_COUNT];
+    int textures[SCG_TEXTURE_COUNT];
+    int outputs[SCG_OUTPUT_COUNT];
+} scg_program_use;
+void scg_program_scan_use(const scg_program *prog, scg_program_use *use);
+
+/* The shortest decimal that reads back as f, always typed float in GLSL. */
+void scg_glsl_float_literal(float f, char *buf, size_t size);
+
+/* ---- assemble_glsl.c ---- */
 
 /* Name of the vertex program a key's fragment program pairs with
  * ("hull-mid", "hull-cp-colour", …): keys that need the same vertex stage
@@ -44,9 +57,7 @@ int scg_emit_fragment(const scg_program *prog, scg_text *out, sc_error *err);
 /* The vertex program for a key (scg_vertex_program_name). */
 int scg_emit_vertex(const scg_key *key, scg_text *out, sc_error *err);
 
-/* Only the intersection function (`void sc_intersect(out …)`), as it appears
- * in the fragment program. */
-int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error *err);
+/* ---- generate.c ---- */
 
 /* One generated variant: both stages, validated. */
 typedef struct scg_generated {

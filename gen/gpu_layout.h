@@ -1,8 +1,9 @@
-/* gpu_layout.h — the contract between generated programs and the runtime:
- * which textures hold the patch data and how it sits in them, which inputs
- * the vertex stage hands to the fragment stage, which uniforms the program
+/* gpu_layout.h — what the IR reads and produces: which textures hold the
+ * patch data and how it sits in them, texel by texel, which inputs the
+ * vertex stage hands to the fragment stage, which uniforms the program
  * reads and which results it produces. The runtime fills this layout, the
- * compiler reads it; docs/gpu-layout.md says the same in prose.
+ * compiler reads it; docs/gpu-layout.md says the same in prose. Names,
+ * locations and bindings are shader_contract.h's, the one place for them.
  *
  * Coordinates. Every record (one GPU patch: an extracted Bézier patch for
  * `bez` keys, a whole NURBS surface for `nurbs` keys) has a centre c (the
@@ -17,19 +18,21 @@
 #ifndef SCG_GPU_LAYOUT_H
 #define SCG_GPU_LAYOUT_H
 
+#include "shader_contract.h"
+
 /* ---- textures: all buffer textures (GL_TEXTURE_BUFFER, samplerBuffer,
- * read with texelFetch), bound to the texture unit equal to the enum
- * value ---- */
+ * read with texelFetch), bound to units SCG_UNIT_POINTS, _KNOTS and
+ * _RECORDS ---- */
 typedef enum scg_texture {
-    /* unit 0, "sc_points", GL_RGBA32F: homogeneous control points
+    /* "sc_points", GL_RGBA32F: homogeneous control points
      * ((x - c.x)·w, (y - c.y)·w, (z - c.z)·w, w). A record's point (i, j),
      * i along u (0 … nu-1), j along v, is texel cp_offset + j·nu + i. */
     SCG_TEX_POINTS = 0,
-    /* unit 1, "sc_knots", GL_R32F: knot vectors, each in full (clamped,
+    /* "sc_knots", GL_R32F: knot vectors, each in full (clamped,
      * nu + deg_u + 1 resp. nv + deg_v + 1 values) from its offset. Used by
      * `nurbs` keys only; `bez` records need no knots. */
     SCG_TEX_KNOTS = 1,
-    /* unit 2, "sc_records", GL_RGBA32F: SCG_RECORD_TEXELS texels per record,
+    /* "sc_records", GL_RGBA32F: SCG_RECORD_TEXELS texels per record,
      * record r from texel SCG_RECORD_TEXELS·r:
      *   +0: (cp_offset, nu, nv, surface id in the scene)
      *   +1: (knot_u_offset, knot_v_offset, deg_u, deg_v)
@@ -90,7 +93,7 @@ enum { SCG_TRIM_HEADER_TEXELS = 2, SCG_TRIM_LOOP_TEXELS = 2, SCG_TRIM_ENTRY_TEXE
 /* Offsets are floats: a block stays below 2^24 texels. */
 #define SCG_TRIM_MAX_TEXELS (1 << 24)
 
-/* ---- fragment-stage inputs (vertex-stage outputs) ---- */
+/* ---- fragment-stage inputs (vertex-stage outputs, SCG_VARYING_*) ---- */
 typedef enum scg_input_slot {
     /* vec3, flat: the eye in the record's re-centred object space. */
     SCG_IN_RAY_ORIGIN = 0,
@@ -126,7 +129,7 @@ typedef enum scg_input_slot {
 /* Pixels per side of a tile of the early-termination texture sc_nearest_t. */
 enum { SCG_NEAREST_TILE = 8 };
 
-/* ---- uniforms (default block; location = enum value) ---- */
+/* ---- uniforms (default block; locations SCG_LOC_*) ---- */
 typedef enum scg_uniform_slot {
     /* float "sc_footprint": size of one pixel at unit distance,
      * 2·tan(fovy/2) / image height. The program's tolerance in object units
@@ -165,14 +168,10 @@ typedef enum scg_output_slot {
 #define SCG_DOMAIN_OVERLAP 0.1f
 #define SCG_DOMAIN_EPS 1.0e-5f
 
-/* Names and GLSL declarations, for the emitter and the runtime. */
-typedef struct scg_slot_info {
-    const char *name;      /* GLSL identifier, e.g. "sc_ray_dir" */
-    const char *glsl_type; /* "vec3", "int", "samplerBuffer", … */
-    int flat;              /* inputs: 1 when `flat` interpolation */
-    int components;        /* 4 or 1 for textures; width for others */
-} scg_slot_info;
-
+/* The declaration of each IR slot: the contract's entry (shader_contract.h)
+ * for textures, inputs and uniforms — sc_t_limit, a global of the fragment
+ * program, has no location — and the intersection function's parameter for
+ * results. */
 const scg_slot_info *scg_texture_info(scg_texture tex);
 const scg_slot_info *scg_input_info(scg_input_slot slot);
 const scg_slot_info *scg_uniform_info(scg_uniform_slot slot);

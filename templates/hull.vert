@@ -4,36 +4,36 @@
 // One vertex of a sub-patch's convex hull relative to its record's centre
 // (object space: transforms are baked into the patch data), with the record
 // it belongs to.
-layout(location = 0) in vec3 sc_hull_position;
-{{UV_ATTRIBUTE}}
-layout(location = 2) in vec4 sc_hull_domain;
-layout(location = 3) in int sc_hull_record;
+{{ATTRIB_HULL_POSITION}}
+{{ATTRIB_HULL_UV}}
+{{ATTRIB_HULL_DOMAIN}}
+{{ATTRIB_HULL_RECORD}}
 // The same vertex relative to one origin for the whole scene, for the
 // rasteriser alone: hulls of different records meet there bit for bit.
-layout(location = 4) in vec3 sc_hull_raster_position;
+{{ATTRIB_HULL_RASTER_POSITION}}
 
 // The view-projection of the camera moved to the origin, and the eye as a
 // float and the rest of its double value: nothing here holds a coordinate
 // whose float precision depends on where the model sits.
-layout(location = 16) uniform mat4 sc_view_projection;
-layout(location = 17) uniform vec3 sc_eye;
-layout(location = 18) uniform vec3 sc_eye_low;
+{{UNIFORM_VIEW_PROJECTION}}
+{{UNIFORM_EYE}}
+{{UNIFORM_EYE_LOW}}
 // The eye relative to the scene's origin.
-layout(location = 19) uniform vec3 sc_raster_eye;
+{{UNIFORM_RASTER_EYE}}
 
-layout(binding = 2) uniform samplerBuffer sc_records;
+{{TEXTURE_RECORDS}}
 {{COLOUR_TEXTURE}}
 
 // The fragment stage's inputs (gpu_layout.h): the ray as origin and
 // direction relative to the record's centre, where float precision does not
 // depend on where the model sits.
-layout(location = 0) flat out vec3 sc_ray_origin;
-layout(location = 1) out vec3 sc_ray_dir;
-{{UV_OUTPUT}}
-layout(location = 3) flat out vec4 sc_domain;
-layout(location = 4) flat out int sc_record;
-layout(location = 8) flat out vec3 sc_centre;
-{{COLOUR_OUTPUT}}
+{{VARYING_RAY_ORIGIN}}
+{{VARYING_RAY_DIR}}
+{{VARYING_UV0}}
+{{VARYING_DOMAIN}}
+{{VARYING_RECORD}}
+{{VARYING_CENTRE}}
+{{VARYING_BASE_COLOUR}}
 
 void main()
 {

@@ -4,12 +4,12 @@
 // Inputs from the vertex stage; locations below 8 are the IR's inputs
 // (gpu_layout.h), 8 and up belong to this skeleton.
 {{INPUTS}}
-layout(location = 8) flat in vec3 sc_centre;
-{{COLOUR_INPUT}}
+{{VARYING_CENTRE}}
+{{VARYING_BASE_COLOUR}}
 
 // Explicit locations: SPIR-V for OpenGL refuses default-block uniforms
 // without them.
-layout(location = 16) uniform mat4 sc_view_projection;
+{{UNIFORM_VIEW_PROJECTION}}
 {{UNIFORMS}}
 
 {{TEXTURES}}

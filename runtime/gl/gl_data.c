@@ -290,7 +290,7 @@ int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scen
 
 void sc_gpu_data_bind(const sc_gl *gl, const sc_gpu_data *data)
 {
-    gl->BindTextures(0, SCG_TEXTURE_COUNT, data->textures);
+    gl->BindTextures(SCG_UNIT_POINTS, SCG_TEXTURE_COUNT, data->textures);
 }
 
 void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data)

@@ -25,10 +25,7 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
         .termination = desc->ert,
-        .outputs = SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV |
-                   (desc->view == SC_SHOW_ITERS ? SCG_OUTPUT_ITERS : 0) |
-                   (desc->view == SC_SHOW_UV ? SCG_OUTPUT_UVVIEW : 0) |
-                   (desc->view == SC_SHOW_HULL ? SCG_OUTPUT_HULLVIEW : 0),
+        .outputs = view_outputs(desc->view),
     };
     sc_surface_key(s, &opts, key);
     if (desc->generic && key->eval != SCG_EVAL_LOOP) {
@@ -171,23 +168,27 @@ static void group_hulls(sc_renderer *r)
         r->hull_group[k] = r->surface_group[r->hulls.subpatches[k].surface];
 }
 
+/* One attribute of the contract, read from its field of gpu_vertex. */
+static void vertex_attrib(const sc_gl *gl, GLuint vao, GLuint location, int components,
+                          GLenum type)
+{
+    GLuint offset = (GLuint)gpu_vertex_fields[location].offset;
+    gl->EnableVertexArrayAttrib(vao, location);
+    if (type == GL_INT)
+        gl->VertexArrayAttribIFormat(vao, location, components, type, offset);
+    else
+        gl->VertexArrayAttribFormat(vao, location, components, type, GL_FALSE, offset);
+    gl->VertexArrayAttribBinding(vao, location, 0);
+}
+
 static void setup_vertex_array(sc_renderer *r)
 {
     const sc_gl *gl = r->gl;
     gl->CreateVertexArrays(1, &r->vertex_array);
-    GLuint vao = r->vertex_array;
-    gl->EnableVertexArrayAttrib(vao, 0);
-    gl->VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, pos));
-    gl->EnableVertexArrayAttrib(vao, 1);
-    gl->VertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, uv));
-    gl->EnableVertexArrayAttrib(vao, 2);
-    gl->VertexArrayAttribFormat(vao, 2, 4, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, domain));
-    gl->EnableVertexArrayAttrib(vao, 3);
-    gl->VertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(gpu_vertex, record));
-    gl->EnableVertexArrayAttrib(vao, 4);
-    gl->VertexArrayAttribFormat(vao, 4, 3, GL_FLOAT, GL_FALSE, offsetof(gpu_vertex, raster_pos));
-    for (int a = 0; a < 5; a++)
-        gl->VertexArrayAttribBinding(vao, (GLuint)a, 0);
+#define X(ID, location, name, type, components, component_type) \
+    vertex_attrib(gl, r->vertex_array, location, components, GL_##component_type);
+    SCG_ATTRIBS(X)
+#undef X
 }
 
 static void upload_colours(sc_renderer *r)

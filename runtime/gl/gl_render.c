@@ -13,24 +13,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "emit_glsl.h"
 #include "programs.h"
+#include "shader_contract.h"
 
-/* The attachments the programs write (emit_glsl.h). */
+/* The attachments the programs write: the contract's fragment outputs
+ * that the view's keys declare, at their locations. */
 static void target_formats(sc_show view, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
 {
+    unsigned outputs = view_outputs(view);
     memset(formats, 0, sizeof(GLenum) * SC_GL_TARGET_MAX_COLOURS);
-    formats[SCG_FRAG_OUT_COLOUR] = GL_SRGB8_ALPHA8;
-    formats[SCG_FRAG_OUT_SURFACE] = GL_R32I;
-    formats[SCG_FRAG_OUT_UVT] = GL_RGBA32F;
-    formats[SCG_FRAG_OUT_POINT] = GL_RGBA32F;
-    formats[SCG_FRAG_OUT_NORMAL] = GL_RGBA32F;
-    if (view == SC_SHOW_ITERS)
-        formats[SCG_FRAG_OUT_ITERS] = GL_RGBA8;
-    if (view == SC_SHOW_UV)
-        formats[SCG_FRAG_OUT_UV] = GL_RGBA8;
-    if (view == SC_SHOW_HULL)
-        formats[SCG_FRAG_OUT_HULL] = GL_SRGB8_ALPHA8;
+#define X(ID, location, name, type, output, format, miss, clear) \
+    if (outputs & SCG_OUTPUT_##output)                          \
+        formats[location] = GL_##format;
+    SCG_FRAG_OUTS(X)
+#undef X
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -347,11 +343,12 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
             return SC_FAIL;
 
     float bg = background_linear();
-    float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{bg, bg, bg, 1}, {-1, -1, -1, -1}};
-    /* uvt.z is the distance to the nearest surface so far: far away. */
-    clear[SCG_FRAG_OUT_UVT][2] = 3.0e38f;
-    for (int c = 0; c < 4; c++)
-        clear[SCG_FRAG_OUT_HULL][c] = clear[SCG_FRAG_OUT_COLOUR][c];
+    float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
+    for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
+        const scg_frag_out_info *o = &scg_frag_outs[i];
+        const float background[4] = {bg, bg, bg, 1};
+        memcpy(clear[o->location], o->clear_background ? background : o->clear, sizeof clear[0]);
+    }
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear);
@@ -361,11 +358,11 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     gl->FrontFace(GL_CCW);
     gl->BindVertexArray(r->vertex_array);
     sc_gpu_data_bind(gl, &r->data);
-    gl->BindTextureUnit(COLOUR_UNIT, r->colour_texture);
+    gl->BindTextureUnit(SCG_UNIT_COLOURS, r->colour_texture);
     if (manual) {
         static const float far = 3.0e38f;
         gl->ClearTexImage(r->nearest_texture, 0, GL_RED, GL_FLOAT, &far);
-        gl->BindTextureUnit(NEAREST_T_UNIT, r->nearest_texture);
+        gl->BindTextureUnit(SCG_UNIT_NEAREST_T, r->nearest_texture);
     }
     for (int g = 0; g < r->ngroups; g++) {
         sc_program programs[2] = {r->groups[g].program, r->groups[g].inside};
@@ -373,11 +370,11 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
             GLuint program = sc_program_gl_name(r->programs, programs[i]);
             if (!program)
                 continue;
-            gl->ProgramUniformMatrix4fv(program, LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
-            gl->ProgramUniform3fv(program, LOC_EYE, 1, eye);
-            gl->ProgramUniform3fv(program, LOC_EYE_LOW, 1, eye_low);
-            gl->ProgramUniform3fv(program, LOC_RASTER_EYE, 1, raster_eye);
-            gl->ProgramUniform1f(program, SCG_UNI_FOOTPRINT, footprint);
+            gl->ProgramUniformMatrix4fv(program, SCG_LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
+            gl->ProgramUniform3fv(program, SCG_LOC_EYE, 1, eye);
+            gl->ProgramUniform3fv(program, SCG_LOC_EYE_LOW, 1, eye_low);
+            gl->ProgramUniform3fv(program, SCG_LOC_RASTER_EYE, 1, raster_eye);
+            gl->ProgramUniform1f(program, SCG_LOC_FOOTPRINT, footprint);
         }
     }
 
@@ -419,7 +416,7 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
             refresh_nearest(r);
     }
     if (manual)
-        gl->BindTextureUnit(NEAREST_T_UNIT, 0);
+        gl->BindTextureUnit(SCG_UNIT_NEAREST_T, 0);
     gl->Disable(GL_FRAMEBUFFER_SRGB);
     gl->Finish();
     return sc_gl_check(gl, "drawing the hulls", err);
@@ -463,16 +460,21 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
     sc_aov own;
     sc_aov *a = aov ? aov : &own;
     sc_aov_alloc(a, &r->camera, 1);
-    float *uvt = sc_alloc((size_t)n * 4, sizeof(float));
-    float *point = sc_alloc((size_t)n * 4, sizeof(float));
-    float *normal = sc_alloc((size_t)n * 4, sizeof(float));
+    /* The AOV attachments, by location; the surface ids straight into the
+     * AOVs, the rest unpacked below. */
+    void *read[SC_GL_TARGET_MAX_COLOURS] = {0};
     int status = SC_OK;
-    if (sc_gl_target_read(gl, t, SCG_FRAG_OUT_SURFACE, GL_RED_INTEGER, GL_INT, 4, a->surface,
-                          err) != SC_OK ||
-        sc_gl_target_read(gl, t, SCG_FRAG_OUT_UVT, GL_RGBA, GL_FLOAT, 16, uvt, err) != SC_OK ||
-        sc_gl_target_read(gl, t, SCG_FRAG_OUT_POINT, GL_RGBA, GL_FLOAT, 16, point, err) != SC_OK ||
-        sc_gl_target_read(gl, t, SCG_FRAG_OUT_NORMAL, GL_RGBA, GL_FLOAT, 16, normal, err) != SC_OK)
-        status = SC_FAIL;
+    for (int i = 0; i < SCG_FRAG_OUT_ENTRIES && status == SC_OK; i++) {
+        const scg_frag_out_info *o = &scg_frag_outs[i];
+        if (o->key_output != SCG_OUTPUT_AOV)
+            continue;
+        read[o->location] = o->location == SCG_FRAG_OUT_SURFACE
+                                ? (void *)a->surface
+                                : sc_alloc((size_t)n * 4, sizeof(float));
+        status = sc_gl_target_read_attachment(gl, t, o->location, read[o->location], err);
+    }
+    const float *uvt = read[SCG_FRAG_OUT_UVT], *point = read[SCG_FRAG_OUT_POINT];
+    const float *normal = read[SCG_FRAG_OUT_NORMAL];
     for (int p = 0; p < n && status == SC_OK; p++) {
         if (a->surface[p] < 0) {
             a->surface[p] = -1;
@@ -485,33 +487,21 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
         memcpy(a->point + 3 * p, point + 4 * p, 3 * sizeof(float));
         memcpy(a->normal + 3 * p, normal + 4 * p, 3 * sizeof(float));
     }
-    free(uvt);
-    free(point);
-    if (status == SC_OK && img) {
-        switch (r->desc.view) {
-        case SC_SHOW_SHADE:
-            status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_COLOUR, img, err);
-            break;
-        case SC_SHOW_UV:
-            status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_UV, img, err);
-            break;
-        case SC_SHOW_ITERS:
-            status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_ITERS, img, err);
-            break;
-        case SC_SHOW_HULL:
-            status = sc_gl_target_read_image(gl, t, SCG_FRAG_OUT_HULL, img, err);
-            break;
-        case SC_SHOW_NORMAL:
-        case SC_SHOW_DEPTH:
-            sc_image_alloc(img, t->width, t->height, 4);
-            if (r->desc.view == SC_SHOW_NORMAL)
-                grey_view(a, a->normal, 3, 1, img);
-            else
-                grey_view(a, a->t, 1, 0, img);
-            break;
-        }
+    for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++)
+        if (read[i] != (void *)a->surface)
+            free(read[i]);
+    unsigned image = view_image_output(r->desc.view);
+    if (status == SC_OK && img && image) {
+        for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++)
+            if (scg_frag_outs[i].key_output == image)
+                status = sc_gl_target_read_image(gl, t, scg_frag_outs[i].location, img, err);
+    } else if (status == SC_OK && img) {
+        sc_image_alloc(img, t->width, t->height, 4);
+        if (r->desc.view == SC_SHOW_NORMAL)
+            grey_view(a, a->normal, 3, 1, img);
+        else
+            grey_view(a, a->t, 1, 0, img);
     }
-    free(normal);
     if (!aov || status != SC_OK)
         sc_aov_free(a);
     return status;

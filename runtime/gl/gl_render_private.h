@@ -5,20 +5,17 @@
 #define SC_GL_RENDER_PRIVATE_H
 
 #include <math.h>
+#include <stddef.h>
 
 #include "gl_render.h"
 #include "gl_data.h"
 #include "gl_target.h"
 
-/* Fragment-stage uniform and vertex-stage uniform locations (templates/hull.vert). */
-enum { LOC_VIEW_PROJECTION = 16, LOC_EYE = 17, LOC_EYE_LOW = 18, LOC_RASTER_EYE = 19 };
-/* Texture units of the per-surface colours (emit_glsl.c, hull.vert) and of
- * the nearest distance so far, `sc_nearest_t` (emit_glsl.c, ert1/ert2 keys). */
-enum { COLOUR_UNIT = 3, NEAREST_T_UNIT = 4 };
+/* Locations, units and fragment outputs are gen/shader_contract.h's. */
 
-/* One vertex of a hull as the vertex program reads it (templates/hull.vert:
- * locations 0 position, 1 start (u, v), 2 sub-patch domain, 3 record). */
-/* A hull vertex twice: relative to its record's centre, where the programs
+/* A hull vertex as the vertex program reads it (the contract's
+ * SCG_ATTRIBS; gpu_vertex_fields says which field is which attribute), the
+ * vertex twice: relative to its record's centre, where the programs
  * compute the ray, and relative to one origin for the whole scene, where
  * it is rasterised, so that hulls of different records meeting at a point
  * meet there bit for bit and no crack opens between them. */
@@ -29,6 +26,41 @@ typedef struct gpu_vertex {
     float domain[4];
     int32_t record;
 } gpu_vertex;
+
+/* Where each vertex attribute lies in gpu_vertex, by location
+ * (tests/test_contract.c checks them against the contract). */
+typedef struct gpu_vertex_field {
+    size_t offset, size;
+} gpu_vertex_field;
+#define GPU_VERTEX_FIELD(field) {offsetof(gpu_vertex, field), sizeof(((gpu_vertex *)0)->field)}
+static const gpu_vertex_field gpu_vertex_fields[] = {
+    [SCG_ATTRIB_HULL_POSITION] = GPU_VERTEX_FIELD(pos),
+    [SCG_ATTRIB_HULL_UV] = GPU_VERTEX_FIELD(uv),
+    [SCG_ATTRIB_HULL_DOMAIN] = GPU_VERTEX_FIELD(domain),
+    [SCG_ATTRIB_HULL_RECORD] = GPU_VERTEX_FIELD(record),
+    [SCG_ATTRIB_HULL_RASTER_POSITION] = GPU_VERTEX_FIELD(raster_pos),
+};
+#undef GPU_VERTEX_FIELD
+
+/* The key output (SCG_OUTPUT_*) whose attachment is the view's image; 0
+ * for the views drawn from the AOVs. */
+static inline unsigned view_image_output(sc_show view)
+{
+    switch (view) {
+    case SC_SHOW_SHADE: return SCG_OUTPUT_SHADE;
+    case SC_SHOW_ITERS: return SCG_OUTPUT_ITERS;
+    case SC_SHOW_UV: return SCG_OUTPUT_UVVIEW;
+    case SC_SHOW_HULL: return SCG_OUTPUT_HULLVIEW;
+    default: return 0;
+    }
+}
+
+/* The outputs a render's programs write: the shaded colour, the AOVs (the
+ * read-back and the nearest distances need them) and the view's image. */
+static inline unsigned view_outputs(sc_show view)
+{
+    return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(view);
+}
 
 /* The hulls drawn with one program. */
 typedef struct group {

@@ -134,6 +134,25 @@ int sc_gl_target_read(const sc_gl *gl, const sc_gl_target *target, int attachmen
                         err);
 }
 
+int sc_gl_target_read_attachment(const sc_gl *gl, const sc_gl_target *target, int attachment,
+                                 void *out, sc_error *err)
+{
+    if (attachment < 0 || attachment >= SC_GL_TARGET_MAX_COLOURS)
+        return sc_fail(err, NULL, 0, "framebuffer has no attachment %d", attachment);
+    switch (target->formats[attachment]) {
+    case GL_R32I:
+        return sc_gl_target_read(gl, target, attachment, GL_RED_INTEGER, GL_INT, 4, out, err);
+    case GL_RGBA32F:
+        return sc_gl_target_read(gl, target, attachment, GL_RGBA, GL_FLOAT, 16, out, err);
+    case GL_RGBA8:
+    case GL_SRGB8_ALPHA8:
+        return sc_gl_target_read(gl, target, attachment, GL_RGBA, GL_UNSIGNED_BYTE, 4, out, err);
+    default:
+        return sc_fail(err, NULL, 0, "framebuffer attachment %d: no read-back for format 0x%x",
+                       attachment, target->formats[attachment]);
+    }
+}
+
 int sc_gl_target_read_image(const sc_gl *gl, const sc_gl_target *target, int attachment,
                             sc_image *img, sc_error *err)
 {

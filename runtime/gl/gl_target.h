@@ -1,6 +1,7 @@
 /* gl_target.h — the offscreen framebuffer every render draws into: colour
  * attachments at the fragment output locations the programs write (8-bit
- * colour, integer and float AOVs — gen/emit_glsl.h fixes which is where)
+ * colour, integer and float AOVs — gen/shader_contract.h fixes which is
+ * where)
  * and a float depth texture (a texture rather than a renderbuffer, so that
  * it can be read back). Read-back turns the GL's bottom-up rows into the
  * library's top-down ones. */
@@ -39,6 +40,11 @@ void sc_gl_target_begin(const sc_gl *gl, const sc_gl_target *target,
 int sc_gl_target_read(const sc_gl *gl, const sc_gl_target *target, int attachment,
                       GLenum format, GLenum type, size_t pixel_bytes, void *out,
                       sc_error *err);
+/* Attachment i whole, in the pixel format its internal format reads back
+ * as without conversion: 4 ints (GL_R32I: 1), 4 floats (GL_RGBA32F) or 4
+ * bytes (8-bit formats) per pixel, row 0 at the top. */
+int sc_gl_target_read_attachment(const sc_gl *gl, const sc_gl_target *target, int attachment,
+                                 void *out, sc_error *err);
 /* An 8-bit attachment as an RGBA image (allocated here). */
 int sc_gl_target_read_image(const sc_gl *gl, const sc_gl_target *target, int attachment,
                             sc_image *img, sc_error *err);

@@ -1,0 +1,444 @@
+/* assemble_glsl.c — the complete programs around the intersection function
+ * (emit_glsl.h): the fragment program of a key and the vertex program that
+ * draws its hulls, each a template (templates/) whose slots this file
+ * fills. Everything the runtime binds is declared from the shader contract
+ * (shader_contract.h), so no template and no line here holds a location or
+ * a binding: this file only decides which declarations a program needs and
+ * where they go. */
+#include "emit_glsl.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "gpu_layout.h"
+
+/* Names the key in a failure a callee reported without one. */
+static int keyed(sc_error *err, const char *key_text)
+{
+    if (err)
+        snprintf(err->key, sizeof err->key, "%s", key_text);
+    return SC_FAIL;
+}
+
+/* ---- describing a key in words, for headers ---- */
+
+static const char *kind_words(scg_patch_kind kind)
+{
+    switch (kind) {
+    case SCG_PATCH_BEZIER: return "tensor Bezier";
+    case SCG_PATCH_NURBS: return "tensor NURBS (knots from the knot texture)";
+    case SCG_PATCH_TRIANGLE: return "triangular Bezier";
+    }
+    return "?";
+}
+
+static const char *eval_words(scg_eval_form eval)
+{
+    switch (eval) {
+    case SCG_EVAL_DC: return "de Casteljau (Bezier) / de Boor (NURBS), unrolled";
+    case SCG_EVAL_BASIS: return "Bernstein basis sums, unrolled";
+    case SCG_EVAL_LOOP: return "generic, with runtime loops over the record's degrees";
+    }
+    return "?";
+}
+
+static const char *method_words(scg_method method)
+{
+    switch (method) {
+    case SCG_METHOD_NEWTON: return "Newton iteration on the ray's two planes";
+    case SCG_METHOD_BROYDEN: return "Broyden iteration";
+    case SCG_METHOD_BCLIP: return "Bezier clipping";
+    case SCG_METHOD_SUBDIV: return "object-space subdivision";
+    case SCG_METHOD_HYBRID: return "hybrid subdivision and Newton";
+    }
+    return "?";
+}
+
+static const char *start_words(sc_start start)
+{
+    switch (start) {
+    case SC_START_MID: return "the centre of the hull's sub-patch domain";
+    case SC_START_CPMAP: return "the control points' parameters, interpolated over the hull";
+    case SC_START_VIEW: return "a view-dependent solve at the hull vertices";
+    case SC_START_DEFAULT: break;   /* never in a key */
+    }
+    return "?";
+}
+
+static const char *ert_words(scg_ert ert)
+{
+    switch (ert) {
+    case SCG_ERT_NONE: return "no early ray termination";
+    case SCG_ERT_BEFORE: return "early ray termination before the intersection";
+    case SCG_ERT_BOTH: return "early ray termination before and after the intersection";
+    case SCG_ERT_CONSERVATIVE: return "conservative depth (depth_greater)";
+    }
+    return "?";
+}
+
+static void describe_key(scg_text *out, const scg_key *key)
+{
+    char degrees[32] = "of any degree";
+    if (key->eval != SCG_EVAL_LOOP)
+        snprintf(degrees, sizeof degrees, "%dx%d", key->deg_u, key->deg_v);
+    char trim[64] = "untrimmed";
+    if (key->trim == SC_TRIM_CLIP)
+        snprintf(trim, sizeof trim, "trimmed by Bezier clipping (curves of degree <= %d)",
+                 key->trim_degree);
+    else if (key->trim == SC_TRIM_LEFT)
+        snprintf(trim, sizeof trim, "trimmed by left-only Bezier clipping (curves of degree <= %d)",
+                 key->trim_degree);
+    else if (key->trim == SC_TRIM_FAST)
+        snprintf(trim, sizeof trim, "trimmed, accelerated (curves of degree <= %d)",
+                 key->trim_degree);
+    scg_text_printf(out, "// patch: %s %s, %s, %s\n", kind_words(key->kind), degrees,
+                    key->rational ? "rational" : "polynomial", trim);
+    scg_text_printf(out, "// evaluation: %s\n", eval_words(key->eval));
+    scg_text_printf(out,
+                    "// method: %s, at most %d iteration%s,\n"
+                    "//   tolerance %g pixel footprints\n"
+                    "// start: %s\n",
+                    method_words(key->method), key->max_iters, key->max_iters == 1 ? "" : "s",
+                    (double)scg_key_tolerance(key), start_words(key->start));
+    scg_text_printf(out, "// depth: %s\n// outputs:", ert_words(key->ert));
+    static const char *const output_words[] = {"shaded colour", "AOVs", "iterations view",
+                                               "uv view", "hull view"};
+    const char *sep = " ";
+    for (int bit = 0; bit < (int)(sizeof output_words / sizeof output_words[0]); bit++)
+        if (key->outputs & (1u << bit)) {
+            scg_text_printf(out, "%s%s", sep, output_words[bit]);
+            sep = ", ";
+        }
+    scg_text_append(out, "\n");
+}
+
+/* ---- declarations, from the contract ---- */
+
+/* One declaration line, without its newline. */
+typedef char decl_line[160];
+
+static const char *attrib_line(decl_line buf, int location)
+{
+    const scg_slot_info *a = scg_contract_find(scg_attribs, SCG_ATTRIB_ENTRIES, location);
+    snprintf(buf, sizeof(decl_line), "layout(location = %d) in %s %s;", a->location,
+             a->glsl_type, a->name);
+    return buf;
+}
+
+/* `storage` is "in" (fragment stage) or "out" (vertex stage). */
+static const char *varying_line(decl_line buf, const scg_slot_info *v, const char *storage)
+{
+    snprintf(buf, sizeof(decl_line), "layout(location = %d) %s%s %s %s;", v->location,
+             v->flat ? "flat " : "", storage, v->glsl_type, v->name);
+    return buf;
+}
+
+static const char *varying_at(decl_line buf, int location, const char *storage)
+{
+    return varying_line(buf, scg_contract_find(scg_varyings, SCG_VARYING_ENTRIES, location),
+                        storage);
+}
+
+static const char *uniform_line(decl_line buf, const scg_slot_info *u)
+{
+    snprintf(buf, sizeof(decl_line), "layout(location = %d) uniform %s %s;", u->location,
+             u->glsl_type, u->name);
+    return buf;
+}
+
+static const char *uniform_at(decl_line buf, int location)
+{
+    return uniform_line(buf, scg_contract_find(scg_uniforms, SCG_UNIFORM_ENTRIES, location));
+}
+
+static const char *texture_line(decl_line buf, const scg_slot_info *t)
+{
+    snprintf(buf, sizeof(decl_line), "layout(binding = %d) uniform %s %s;", t->location,
+             t->glsl_type, t->name);
+    return buf;
+}
+
+static const char *texture_at(decl_line buf, int unit)
+{
+    return texture_line(buf, scg_contract_find(scg_textures, SCG_TEXTURE_ENTRIES, unit));
+}
+
+/* Results of sc_intersect that each output needs. */
+static unsigned needed_results(unsigned outputs)
+{
+    unsigned need = 1u << SCG_OUT_HIT | 1u << SCG_OUT_POINT;
+    if (outputs & SCG_OUTPUT_SHADE)
+        need |= 1u << SCG_OUT_NORMAL;
+    if (outputs & SCG_OUTPUT_AOV)
+        need |= 1u << SCG_OUT_SURFACE | 1u << SCG_OUT_UV | 1u << SCG_OUT_T |
+                1u << SCG_OUT_ITERS | 1u << SCG_OUT_NORMAL;
+    if (outputs & SCG_OUTPUT_ITERS)
+        need |= 1u << SCG_OUT_ITERS;
+    if (outputs & SCG_OUTPUT_UVVIEW)
+        need |= 1u << SCG_OUT_UV;
+    if (outputs & SCG_OUTPUT_HULLVIEW)
+        need |= 1u << SCG_OUT_NORMAL;
+    return need;
+}
+
+static void header(scg_text *out, const char *what, const char *key_text)
+{
+    scg_text_printf(out, "// Generated by %s. Do not edit: regenerate with\n"
+                         "//   splinecast gen --key %s -o DIR\n"
+                         "// key: %s\n"
+                         "// stage: %s\n",
+                    SCG_GENERATOR_VERSION, key_text, key_text, what);
+}
+
+/* Declarations of the colour attachments the key's outputs write. */
+static void output_declarations(scg_text *out, unsigned outputs)
+{
+    scg_text_append(out, "// Colour attachments, by location (docs/emitter.md).\n");
+    for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
+        const scg_frag_out_info *o = &scg_frag_outs[i];
+        if (outputs & o->key_output)
+            scg_text_printf(out, "layout(location = %d) out %s %s;\n", o->location, o->glsl_type,
+                            o->name);
+    }
+}
+
+static int fragment_slots(const scg_program *prog, const scg_program_use *use, scg_text *parts,
+                          sc_error *err)
+{
+    const scg_key *key = &prog->key;
+    char key_text[SCG_KEY_MAX];
+    scg_key_format(key, key_text, sizeof key_text);
+    enum { HEADER, INPUTS, CENTRE, BASE_COLOUR, VIEW_PROJECTION, UNIFORMS, TEXTURES, OUTPUTS,
+           GLOBALS, FUNCTION, FUNCTIONS, PREPARE, RESULTS, CALL, ON_MISS, WRITE };
+    decl_line line;
+
+    char stage[96];
+    snprintf(stage, sizeof stage, "fragment program, drawn with vertex program %s.vert",
+             scg_vertex_program_name(key));
+    header(&parts[HEADER], stage, key_text);
+    describe_key(&parts[HEADER], key);
+
+    /* The skeleton reads the ray itself (depth, normals). */
+    for (int s = 0; s < SCG_INPUT_COUNT; s++) {
+        /* The hull view colours by the hull's record and domain. */
+        int hull_id = (key->outputs & SCG_OUTPUT_HULLVIEW) &&
+                      (s == SCG_IN_DOMAIN || s == SCG_IN_RECORD);
+        if (s == SCG_IN_T_LIMIT ||
+            (!use->inputs[s] && s != SCG_IN_RAY_DIR && s != SCG_IN_RAY_ORIGIN && !hull_id))
+            continue;
+        scg_text_printf(&parts[INPUTS], "%s\n",
+                        varying_line(line, scg_input_info((scg_input_slot)s), "in"));
+    }
+    scg_text_append(&parts[CENTRE], varying_at(line, SCG_VARYING_CENTRE, "in"));
+    if (key->outputs & SCG_OUTPUT_SHADE)
+        scg_text_append(&parts[BASE_COLOUR], varying_at(line, SCG_VARYING_BASE_COLOUR, "in"));
+    scg_text_append(&parts[VIEW_PROJECTION], uniform_at(line, SCG_LOC_VIEW_PROJECTION));
+    for (int s = 0; s < SCG_UNIFORM_COUNT; s++)
+        if (use->uniforms[s])
+            scg_text_printf(&parts[UNIFORMS], "%s\n",
+                            uniform_line(line, scg_uniform_info((scg_uniform_slot)s)));
+    int any_texture = use->inputs[SCG_IN_T_LIMIT];
+    for (int s = 0; s < SCG_TEXTURE_COUNT; s++)
+        any_texture |= use->textures[s];
+    if (any_texture)
+        scg_text_append(&parts[TEXTURES],
+                        "// Patch data (gpu_layout.h), bound to the unit equal to the binding.\n");
+    for (int s = 0; s < SCG_TEXTURE_COUNT; s++)
+        if (use->textures[s])
+            scg_text_printf(&parts[TEXTURES], "%s\n",
+                            texture_line(line, scg_texture_info((scg_texture)s)));
+    if (use->inputs[SCG_IN_T_LIMIT]) {
+        scg_text_printf(&parts[TEXTURES],
+                        "// Per tile of %d x %d pixels, the largest distance along the unit ray to "
+                        "the\n// nearest surfaces drawn so far.\n%s\n",
+                        SCG_NEAREST_TILE, SCG_NEAREST_TILE, texture_at(line, SCG_UNIT_NEAREST_T));
+        scg_text_append(&parts[GLOBALS],
+                        "// Early ray termination: the ray parameter of the nearest surface so "
+                        "far, in\n// units of sc_ray_dir.\nfloat sc_t_limit = 0.0;\n\n");
+        /* The intersection refuses such a hull too; leaving at once also
+         * skips loading the patch and the final evaluation where the
+         * hardware branches per group of pixels. */
+        scg_text_printf(&parts[PREPARE],
+                        "sc_t_limit = texelFetch(sc_nearest_t, ivec2(gl_FragCoord.xy) / %d, 0).r / "
+                        "length(sc_ray_dir);\n"
+                        "// The hull's front face (t = 1) lies behind the nearest surface so far.\n"
+                        "if (sc_t_limit < 1.0)\n    discard;\n",
+                        SCG_NEAREST_TILE);
+    }
+    output_declarations(&parts[OUTPUTS], key->outputs);
+    if (key->ert == SCG_ERT_CONSERVATIVE)
+        scg_text_append(&parts[OUTPUTS],
+                        "// The hit lies on the ray behind the hull's front face: its depth is "
+                        "never less\n// than the fragment's, so early depth testing may stay "
+                        "on.\nlayout(depth_greater) out float gl_FragDepth;\n");
+
+    unsigned need = needed_results(key->outputs);
+    for (int s = 0; s < SCG_OUTPUT_COUNT; s++)
+        if ((need & (1u << s)) && !use->outputs[s])
+            return sc_fail_key(err, key_text,
+                               "emitter: the program does not compute '%s', which the key's "
+                               "outputs need", scg_output_info((scg_output_slot)s)->name);
+    if (scg_emit_intersect_function(prog, &parts[FUNCTION], err) != SC_OK)
+        return keyed(err, key_text);
+
+    scg_text_append(&parts[CALL], "sc_intersect(");
+    const char *sep = "";
+    for (int s = 0; s < SCG_OUTPUT_COUNT; s++)
+        if (use->outputs[s]) {
+            const scg_slot_info *info = scg_output_info((scg_output_slot)s);
+            scg_text_printf(&parts[RESULTS], "%s %s;\n", info->glsl_type, info->name);
+            scg_text_printf(&parts[CALL], "%s%s", sep, info->name);
+            sep = ", ";
+        }
+    scg_text_append(&parts[CALL], ");\n");
+
+    if (key->outputs & (SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | SCG_OUTPUT_HULLVIEW)) {
+        scg_text_append(&parts[WRITE], "\n");
+        if (scg_template_expand(&parts[WRITE], "view_facing_normal.glsl", NULL, 0, err) != SC_OK)
+            return SC_FAIL;
+    }
+    if (key->outputs & (SCG_OUTPUT_SHADE | SCG_OUTPUT_HULLVIEW)) {
+        if (scg_template_expand(&parts[FUNCTIONS], "shade_headlight.glsl", NULL, 0, err) != SC_OK)
+            return SC_FAIL;
+        scg_text_append(&parts[FUNCTIONS], "\n");
+    }
+    if (key->outputs & SCG_OUTPUT_SHADE &&
+        scg_template_expand(&parts[WRITE], "view_shade.glsl", NULL, 0, err) != SC_OK)
+        return SC_FAIL;
+    if (key->outputs & SCG_OUTPUT_AOV &&
+        scg_template_expand(&parts[WRITE], "view_aov.glsl", NULL, 0, err) != SC_OK)
+        return SC_FAIL;
+    if (key->outputs & SCG_OUTPUT_ITERS) {
+        char max_iters[16], span[32];
+        snprintf(max_iters, sizeof max_iters, "%d", key->max_iters);
+        scg_glsl_float_literal((float)(key->max_iters > 1 ? key->max_iters - 1 : 1), span,
+                               sizeof span);
+        scg_slot slots[] = {{"MAX_ITERS", max_iters}, {"MAX_ITERS_MINUS_ONE", span}};
+        if (scg_template_expand(&parts[WRITE], "view_iters.glsl", slots, 2, err) != SC_OK)
+            return SC_FAIL;
+    }
+    if (key->outputs & SCG_OUTPUT_UVVIEW &&
+        scg_template_expand(&parts[WRITE], "view_uv.glsl", NULL, 0, err) != SC_OK)
+        return SC_FAIL;
+    if (!(key->outputs & SCG_OUTPUT_HULLVIEW)) {
+        scg_text_append(&parts[ON_MISS], "if (!hit)\n    discard;\n");
+        return SC_OK;
+    }
+    /* A miss still writes every declared output: the surface id marks it as
+     * one, the rest is defined. */
+    scg_text clear = {0};
+    for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
+        const scg_frag_out_info *o = &scg_frag_outs[i];
+        if ((key->outputs & o->key_output) && o->miss)
+            scg_text_printf(&clear, "%s = %s;\n", o->name, o->miss);
+    }
+    scg_slot slot = {"CLEAR_OUTPUTS", scg_text_str(&clear)};
+    int status = scg_template_expand(&parts[FUNCTIONS], "hull_colour.glsl", NULL, 0, err);
+    if (status == SC_OK)
+        status = scg_template_expand(&parts[ON_MISS], "view_hull_miss.glsl", &slot, 1, err);
+    if (status == SC_OK)
+        status = scg_template_expand(&parts[WRITE], "view_hull.glsl", NULL, 0, err);
+    scg_text_free(&clear);
+    return status;
+}
+
+int scg_emit_fragment(const scg_program *prog, scg_text *out, sc_error *err)
+{
+    static const char *const slot_names[] = {
+        "HEADER", "INPUTS", "VARYING_CENTRE", "VARYING_BASE_COLOUR", "UNIFORM_VIEW_PROJECTION",
+        "UNIFORMS", "TEXTURES", "OUTPUTS", "GLOBALS", "INTERSECT_FUNCTION", "FUNCTIONS",
+        "PREPARE", "RESULTS", "CALL", "ON_MISS", "WRITE_OUTPUTS"};
+    enum { NSLOTS = sizeof slot_names / sizeof slot_names[0] };
+    scg_program_use use;
+    scg_program_scan_use(prog, &use);
+    scg_text parts[NSLOTS];
+    memset(parts, 0, sizeof parts);
+    int status = fragment_slots(prog, &use, parts, err);
+    if (status == SC_OK) {
+        scg_slot slots[NSLOTS];
+        for (int s = 0; s < NSLOTS; s++)
+            slots[s] = (scg_slot){slot_names[s], scg_text_str(&parts[s])};
+        status = scg_template_expand(out, "raycast.frag", slots, NSLOTS, err);
+    }
+    for (int s = 0; s < NSLOTS; s++)
+        scg_text_free(&parts[s]);
+    return status;
+}
+
+/* ---- the vertex program ---- */
+
+static int vertex_needs_colour(const scg_key *key) { return (key->outputs & SCG_OUTPUT_SHADE) != 0; }
+
+const char *scg_vertex_program_name(const scg_key *key)
+{
+    switch (key->start) {
+    case SC_START_CPMAP: return vertex_needs_colour(key) ? "hull-cp-colour" : "hull-cp";
+    case SC_START_VIEW: return vertex_needs_colour(key) ? "hull-view-colour" : "hull-view";
+    default: return vertex_needs_colour(key) ? "hull-mid-colour" : "hull-mid";
+    }
+}
+
+int scg_emit_vertex(const scg_key *key, scg_text *out, sc_error *err)
+{
+    const char *name = scg_vertex_program_name(key);
+    int uv = key->start == SC_START_CPMAP, colour = vertex_needs_colour(key);
+    scg_text head = {0};
+    scg_text_printf(&head, "// Generated by %s. Do not edit: regenerate with\n"
+                           "//   splinecast gen --key KEY -o DIR (any key it serves)\n"
+                           "// vertex program: %s\n"
+                           "// stage: vertex program for the hulls; it serves every key with "
+                           "start '%s'%s.\n",
+                    SCG_GENERATOR_VERSION, name, uv ? "cp" : key->start == SC_START_VIEW ? "view" : "mid",
+                    colour ? " and the shaded colour" : " and no shaded colour");
+    char record_texels[16];
+    snprintf(record_texels, sizeof record_texels, "%d", SCG_RECORD_TEXELS);
+    char colour_line[160];
+    snprintf(colour_line, sizeof colour_line,
+             "sc_base_colour = texelFetch(sc_colours, int(texelFetch(sc_records, %d * "
+             "sc_hull_record).w)).rgb;",
+             SCG_RECORD_TEXELS);
+    decl_line colour_texture;
+    char colour_texture_slot[sizeof colour_texture + 64];
+    snprintf(colour_texture_slot, sizeof colour_texture_slot,
+             "// Linear RGB of each surface, by surface id.\n%s",
+             texture_at(colour_texture, SCG_UNIT_COLOURS));
+    /* Every attribute and every varying has its line in the template; the
+     * start values and the colour only where the key needs them. */
+    scg_slot slots[32];
+    decl_line lines[32];
+    int n = 0;
+#define SLOT(name, text) (slots[n] = (scg_slot){name, text}, n++)
+#define ATTRIB(ID, needed) SLOT("ATTRIB_" #ID, (needed) ? attrib_line(lines[n], SCG_ATTRIB_##ID) : "")
+#define VARYING(ID, needed) \
+    SLOT("VARYING_" #ID, (needed) ? varying_at(lines[n], SCG_VARYING_##ID, "out") : "")
+#define UNIFORM(ID) SLOT("UNIFORM_" #ID, uniform_at(lines[n], SCG_LOC_##ID))
+    SLOT("HEADER", scg_text_str(&head));
+    ATTRIB(HULL_POSITION, 1);
+    ATTRIB(HULL_UV, uv);
+    ATTRIB(HULL_DOMAIN, 1);
+    ATTRIB(HULL_RECORD, 1);
+    ATTRIB(HULL_RASTER_POSITION, 1);
+    UNIFORM(VIEW_PROJECTION);
+    UNIFORM(EYE);
+    UNIFORM(EYE_LOW);
+    UNIFORM(RASTER_EYE);
+    SLOT("TEXTURE_RECORDS", texture_at(lines[n], SCG_UNIT_RECORDS));
+    SLOT("COLOUR_TEXTURE", colour ? colour_texture_slot : "");
+    VARYING(RAY_ORIGIN, 1);
+    VARYING(RAY_DIR, 1);
+    VARYING(UV0, uv);
+    VARYING(DOMAIN, 1);
+    VARYING(RECORD, 1);
+    VARYING(CENTRE, 1);
+    VARYING(BASE_COLOUR, colour);
+    SLOT("RECORD_TEXELS", record_texels);
+    SLOT("UV_START", uv ? "sc_uv0 = sc_hull_uv;" : "");
+    SLOT("COLOUR", colour ? colour_line : "");
+#undef SLOT
+#undef ATTRIB
+#undef VARYING
+#undef UNIFORM
+    int status = scg_template_expand(out, "hull.vert", slots, n, err);
+    scg_text_free(&head);
+    return status;
+}
