@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "emit_glsl.h"
 #include "gpu_layout.h"
 #include "programs.h"
 #include "scene_keys.h"
