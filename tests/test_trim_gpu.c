@@ -11,7 +11,6 @@
 #include <stdlib.h>
 
 #include "io.h"
-#include "scene_keys.h"
 #include "test.h"
 #include "trim_probe.h"
 

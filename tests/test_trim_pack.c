@@ -1,8 +1,6 @@
 /* test_trim_pack.c — trimmed variant keys, and the trim block layout
  * (runtime/prepare/trim_pack.c) against values known by construction. */
-#include <stdlib.h>
 
-#include "io.h"
 #include "scene_keys.h"
 #include "test.h"
 #include "trim_probe.h"
