@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bezier.h"
 #include "nurbs.h"
 
 enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8, MAX_DIVISIONS = 64 };
@@ -85,35 +86,13 @@ static size_t piece_points(const piece *p)
  * insertion to full multiplicity. */
 static void split_at(const piece *p, int dir, double f, piece *lo, piece *hi)
 {
-    int nu = p->deg_u + 1, nv = p->deg_v + 1;
-    int n = dir == 0 ? nu : nv;
-    int lines = dir == 0 ? nv : nu;
     *lo = *hi = *p;
     lo->cp = sc_alloc(piece_points(p) * 4, sizeof(double));
     hi->cp = sc_alloc(piece_points(p) * 4, sizeof(double));
     double cut = p->local[2 * dir] + f * (p->local[2 * dir + 1] - p->local[2 * dir]);
     lo->local[2 * dir + 1] = cut;
     hi->local[2 * dir] = cut;
-    double *work = sc_alloc((size_t)n * 4, sizeof(double));
-    for (int line = 0; line < lines; line++) {
-        for (int k = 0; k < n; k++) {
-            int i = dir == 0 ? k : line, j = dir == 0 ? line : k;
-            memcpy(work + 4 * k, p->cp + 4 * (j * nu + i), 4 * sizeof(double));
-        }
-        /* After round r, work[0] is the r-th point of the lower part and
-         * work[n-1-r] the mirrored one of the upper part. */
-        for (int r = 0; r < n; r++) {
-            int i_lo = dir == 0 ? r : line, j_lo = dir == 0 ? line : r;
-            int i_hi = dir == 0 ? n - 1 - r : line, j_hi = dir == 0 ? line : n - 1 - r;
-            memcpy(lo->cp + 4 * (j_lo * nu + i_lo), work, 4 * sizeof(double));
-            memcpy(hi->cp + 4 * (j_hi * nu + i_hi), work + 4 * (n - 1 - r),
-                   4 * sizeof(double));
-            for (int k = 0; k < n - 1 - r; k++)
-                for (int c = 0; c < 4; c++)
-                    work[4 * k + c] = (1 - f) * work[4 * k + c] + f * work[4 * (k + 1) + c];
-        }
-    }
-    free(work);
+    sc_bezier_grid_split(p->cp, p->deg_u, p->deg_v, dir, f, lo->cp, hi->cp);
 }
 
 /* Euclidean world-space point (i, j) of a piece. */
@@ -383,6 +362,23 @@ static int refine(builder *b, piece *p, int depth, sc_error *err)
     return status;
 }
 
+/* The k-th of n equal parts along dir, cut off the front of *rest, which
+ * holds parts k..n-1 and is left holding k+1..n-1 (the last part is rest
+ * itself). */
+static piece cut_off(piece *rest, int dir, int k, int n)
+{
+    piece part = *rest;
+    if (k < n - 1) {
+        piece next;
+        split_at(rest, dir, 1.0 / (n - k), &part, &next);
+        free(rest->cp);
+        *rest = next;
+    } else {
+        rest->cp = NULL;
+    }
+    return part;
+}
+
 /* Uniform refinement: n × n pieces of equal parameter size, cut off strip
  * by strip at 1/n, 1/(n-1), … of what is left. */
 static int uniform(builder *b, const piece *whole, int n, sc_error *err)
@@ -392,25 +388,9 @@ static int uniform(builder *b, const piece *whole, int n, sc_error *err)
     memcpy(rest_u.cp, whole->cp, piece_points(whole) * 4 * sizeof(double));
     int status = SC_OK;
     for (int a = 0; a < n && status == SC_OK; a++) {
-        piece strip, next_u;
-        if (a < n - 1) {
-            split_at(&rest_u, 0, 1.0 / (n - a), &strip, &next_u);
-            free(rest_u.cp);
-            rest_u = next_u;
-        } else {
-            strip = rest_u;
-            rest_u.cp = NULL;
-        }
+        piece strip = cut_off(&rest_u, 0, a, n);
         for (int c = 0; c < n && status == SC_OK; c++) {
-            piece cell, next_v;
-            if (c < n - 1) {
-                split_at(&strip, 1, 1.0 / (n - c), &cell, &next_v);
-                free(strip.cp);
-                strip = next_v;
-            } else {
-                cell = strip;
-                strip.cp = NULL;
-            }
+            piece cell = cut_off(&strip, 1, c, n);
             status = emit_hull(b, &cell, err);
             free(cell.cp);
         }
