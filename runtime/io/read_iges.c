@@ -656,87 +656,8 @@ static int entity_color(reader *r, int e, float rgb[3])
 }
 
 /* ------------------------------------------------------------------ */
-/* Domains: clamping and sub-ranges                                     */
+/* Domains: knot checks (clamping and sub-ranges are in nurbs.h)        */
 /* ------------------------------------------------------------------ */
-
-/* A requested domain end within rounding of a knot is that knot, so that
- * no sliver span is created. */
-static double snap_to_knot(double t, const double *knots, int nk, double scale)
-{
-    for (int i = 0; i < nk; i++)
-        if (fabs(t - knots[i]) <= 1e-10 * scale)
-            return knots[i];
-    return t;
-}
-
-/* Replaces the curve by its piece over [a, b] (within its domain), with
- * clamped knots at both ends. */
-static void curve_restrict(sc_curve *c, double a, double b)
-{
-    int p = c->degree, nk = c->ncp + p + 1;
-    double t0 = c->knots[p], t1 = c->knots[c->ncp], scale = t1 - t0;
-    a = snap_to_knot(a < t0 ? t0 : a, c->knots, nk, scale);
-    b = snap_to_knot(b > t1 ? t1 : b, c->knots, nk, scale);
-    if (!(a < b)) {
-        a = t0;
-        b = t1;
-    }
-    int clamped = c->knots[0] == t0 && c->knots[nk - 1] == t1;
-    if (clamped && a == t0 && b == t1)
-        return;
-    sc_curve work, lo, hi;
-    sc_curve_clamp(c, &work);
-    sc_curve_domain(&work, &t0, &t1);
-    if (a > t0) {
-        sc_curve_split(&work, a, &lo, &hi);
-        sc_curve_free(&lo);
-        sc_curve_free(&work);
-        work = hi;
-    }
-    sc_curve_domain(&work, &t0, &t1);
-    if (b < t1) {
-        sc_curve_split(&work, b, &lo, &hi);
-        sc_curve_free(&hi);
-        sc_curve_free(&work);
-        work = lo;
-    }
-    sc_curve_free(c);
-    *c = work;
-}
-
-static void surface_restrict(sc_surface *s, int dir, double a, double b)
-{
-    int p = dir ? s->deg_v : s->deg_u, n = dir ? s->nv : s->nu, nk = n + p + 1;
-    const double *k = dir ? s->knots_v : s->knots_u;
-    double t0 = k[p], t1 = k[n], scale = t1 - t0;
-    a = snap_to_knot(a < t0 ? t0 : a, k, nk, scale);
-    b = snap_to_knot(b > t1 ? t1 : b, k, nk, scale);
-    if (!(a < b)) {
-        a = t0;
-        b = t1;
-    }
-    int clamped = k[0] == t0 && k[nk - 1] == t1;
-    if (clamped && a == t0 && b == t1)
-        return;
-    sc_surface work, lo, hi;
-    sc_surface_clamp(s, &work);
-    const double *kw = dir ? work.knots_v : work.knots_u;
-    if (a > kw[p]) {
-        sc_surface_split(&work, dir, a, &lo, &hi);
-        sc_surface_free(&lo);
-        sc_surface_free(&work);
-        work = hi;
-    }
-    kw = dir ? work.knots_v : work.knots_u;
-    if (b < kw[dir ? work.nv : work.nu]) {
-        sc_surface_split(&work, dir, b, &lo, &hi);
-        sc_surface_free(&hi);
-        sc_surface_free(&work);
-        work = lo;
-    }
-    sc_surface_free(s);
-    *s = work;
-}
 
 /* Knots: finite and non-decreasing with a non-empty domain. */
 static int check_knot_vector(reader *r, const params *p, int first_param, const double *k,
@@ -827,12 +748,12 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
             if (get_real(r, p, at + i, &range[i]))
                 return SC_FAIL;
         if (range[0] < range[1])
-            surface_restrict(s, 0, range[0], range[1]);
+            sc_surface_restrict(s, 0, range[0], range[1]);
         if (range[2] < range[3])
-            surface_restrict(s, 1, range[2], range[3]);
+            sc_surface_restrict(s, 1, range[2], range[3]);
     } else {
-        surface_restrict(s, 0, s->knots_u[m1], s->knots_u[s->nu]);
-        surface_restrict(s, 1, s->knots_v[m2], s->knots_v[s->nv]);
+        sc_surface_restrict(s, 0, s->knots_u[m1], s->knots_u[s->nu]);
+        sc_surface_restrict(s, 1, s->knots_v[m2], s->knots_v[s->nv]);
     }
     sc_surface_update_rational(s);
     sc_error check;
@@ -884,23 +805,6 @@ static void put_point(sc_curve *c, int i, const double m[12], double x, double y
     c->cp[3 * i + 0] = (m[0] * x + m[1] * y + m[2] * z + m[3]) * w;
     c->cp[3 * i + 1] = (m[4] * x + m[5] * y + m[6] * z + m[7]) * w;
     c->cp[3 * i + 2] = w;
-}
-
-static void curve_reverse(sc_curve *c)
-{
-    int nk = c->ncp + c->degree + 1, stride = c->dim + 1;
-    double a = c->knots[0], b = c->knots[nk - 1];
-    for (int i = 0, j = nk - 1; i <= j; i++, j--) {
-        double ki = c->knots[i], kj = c->knots[j];
-        c->knots[i] = a + b - kj;
-        c->knots[j] = a + b - ki;
-    }
-    for (int i = 0, j = c->ncp - 1; i < j; i++, j--)
-        for (int d = 0; d < stride; d++) {
-            double t = c->cp[i * stride + d];
-            c->cp[i * stride + d] = c->cp[j * stride + d];
-            c->cp[j * stride + d] = t;
-        }
 }
 
 static int read_110(reader *r, const params *p, const double m[12], curve_list *out)
@@ -1014,11 +918,11 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
         if (get_real(r, p, at, &range[0]) || get_real(r, p, at + 1, &range[1]))
             return SC_FAIL;
         if (range[0] < range[1])
-            curve_restrict(c, range[0], range[1]);
+            sc_curve_restrict(c, range[0], range[1]);
         else
-            curve_restrict(c, c->knots[deg], c->knots[n]);
+            sc_curve_restrict(c, c->knots[deg], c->knots[n]);
     } else {
-        curve_restrict(c, c->knots[deg], c->knots[n]);
+        sc_curve_restrict(c, c->knots[deg], c->knots[n]);
     }
     return SC_OK;
 }
@@ -1078,7 +982,7 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
             out->items[j] = t;
         }
         for (int i = first; i < out->n; i++)
-            curve_reverse(&out->items[i]);
+            sc_curve_reverse(&out->items[i]);
     }
     return status;
 }
@@ -1101,12 +1005,12 @@ static void orient_chain(curve_list *l)
     double fwd = fmin(point_distance(&c[0], last0, &c[1], 0), point_distance(&c[0], last0, &c[1], last1));
     double rev = fmin(point_distance(&c[0], 0, &c[1], 0), point_distance(&c[0], 0, &c[1], last1));
     if (rev < fwd)
-        curve_reverse(&c[0]);
+        sc_curve_reverse(&c[0]);
     for (int i = 1; i < l->n; i++) {
         int prev_end = c[i - 1].ncp - 1;
         if (point_distance(&c[i - 1], prev_end, &c[i], c[i].ncp - 1) <
             point_distance(&c[i - 1], prev_end, &c[i], 0))
-            curve_reverse(&c[i]);
+            sc_curve_reverse(&c[i]);
     }
 }
 
@@ -1166,7 +1070,7 @@ static int edge_curves(reader *r, const params *p, int first, int count, int str
             out->items[j] = t;
         }
         for (int i = start; i < out->n; i++)
-            curve_reverse(&out->items[i]);
+            sc_curve_reverse(&out->items[i]);
     }
     return SC_OK;
 }
@@ -1479,7 +1383,7 @@ static void unwrap_seams(sc_surface *s)
             join_period(s, dir, 1);
         if (hi > b + slack)
             join_period(s, dir, 0);
-        surface_restrict(s, dir, lo, hi);
+        sc_surface_restrict(s, dir, lo, hi);
         s->loops = loops;
         s->nloops = nloops;
     }

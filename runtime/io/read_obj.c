@@ -351,30 +351,6 @@ static void load_mtllib(obj_reader *r)
     }
 }
 
-/* ---- clamping ---- */
-
-/* Replaces s by its clamped piece over [a, b] (within its domain) in
- * direction dir. A surf range smaller than the knots' range is cut out by
- * splitting, which leaves both sides clamped. */
-static void surface_restrict(sc_surface *s, int dir, double a, double b)
-{
-    double lo[2], hi[2];
-    sc_surface_domain(s, &lo[0], &hi[0], &lo[1], &hi[1]);
-    sc_surface below, above;
-    if (a > lo[dir]) {
-        sc_surface_split(s, dir, a, &below, &above);
-        sc_surface_free(&below);
-        sc_surface_free(s);
-        *s = above;
-    }
-    if (b < hi[dir]) {
-        sc_surface_split(s, dir, b, &below, &above);
-        sc_surface_free(&above);
-        sc_surface_free(s);
-        *s = below;
-    }
-}
-
 /* The knot vector of one direction of the element, checked, into a new
  * array; *ncp receives the number of control points it implies. */
 static int element_knots(obj_reader *r, int dir, double **knots, int *ncp)
@@ -505,23 +481,6 @@ static int finish_curv2(obj_reader *r)
     return SC_OK;
 }
 
-/* Negating the knots reverses a curve exactly (no rounding). */
-static void curve_reverse(sc_curve *c)
-{
-    int nk = c->ncp + c->degree + 1, stride = c->dim + 1;
-    for (int i = 0, j = nk - 1; i <= j; i++, j--) {
-        double a = -c->knots[i], b = -c->knots[j];
-        c->knots[i] = b;
-        c->knots[j] = a;
-    }
-    for (int i = 0, j = c->ncp - 1; i < j; i++, j--)
-        for (int d = 0; d < stride; d++) {
-            double t = c->cp[i * stride + d];
-            c->cp[i * stride + d] = c->cp[j * stride + d];
-            c->cp[j * stride + d] = t;
-        }
-}
-
 /* The piece of a defined curve a trim statement refers to. */
 static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_ref *ref,
                       sc_curve *out)
@@ -538,23 +497,11 @@ static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_re
         return fail(r, loop->line, "%s range [%.17g, %.17g] lies outside the parameter range "
                     "[%.17g, %.17g] of curve %d", loop->is_hole ? "hole" : "trim", ref->t0,
                     ref->t1, t0, t1, ref->curve + 1);
+    /* Ends within the tolerance of the domain's are the domain's. */
     sc_curve_copy(out, c);
-    if (lo > t0 + tol) {
-        sc_curve left, right;
-        sc_curve_split(out, lo, &left, &right);
-        sc_curve_free(&left);
-        sc_curve_free(out);
-        *out = right;
-    }
-    if (hi < t1 - tol) {
-        sc_curve left, right;
-        sc_curve_split(out, hi, &left, &right);
-        sc_curve_free(&right);
-        sc_curve_free(out);
-        *out = left;
-    }
+    sc_curve_restrict(out, lo > t0 + tol ? lo : t0, hi < t1 - tol ? hi : t1);
     if (ref->t0 > ref->t1)
-        curve_reverse(out);
+        sc_curve_reverse(out);
     return SC_OK;
 }
 
@@ -622,8 +569,8 @@ static int finish_surf(obj_reader *r)
     sc_surface_clamp(&s, &clamped);
     sc_surface_free(&s);
     s = clamped;
-    surface_restrict(&s, 0, lim[0], lim[1]);
-    surface_restrict(&s, 1, lim[2], lim[3]);
+    sc_surface_restrict(&s, 0, lim[0], lim[1]);
+    sc_surface_restrict(&s, 1, lim[2], lim[3]);
     sc_surface_update_rational(&s);
     sc_error check;
     if (sc_surface_check(&s, &check)) {

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sc_base.h"
+#include "nurbs_local.h"
 
 /* Doubles held on the stack before the triangle allocates: degree 63 with
  * 4 doubles per point, the highest patch degree the reference takes, so
@@ -20,7 +20,7 @@ void sc_bezier_split(const double *cp, int degree, int dim, int stride, double t
 {
     double stack[STACK_DOUBLES];
     size_t need = (size_t)(degree + 1) * (size_t)dim;
-    double *work = need <= STACK_DOUBLES ? stack : sc_alloc(need, sizeof(double));
+    double *work = scratch(stack, STACK_DOUBLES, need);
     for (int i = 0; i <= degree; i++)
         memcpy(work + (size_t)i * (size_t)dim, cp + (size_t)i * (size_t)stride,
                sizeof(double) * (size_t)dim);
@@ -37,19 +37,17 @@ void sc_bezier_split(const double *cp, int degree, int dim, int stride, double t
             memcpy(right + (size_t)(degree - r) * (size_t)stride, work + (degree - r) * dim,
                    sizeof(double) * (size_t)dim);
     }
-    if (work != stack)
-        free(work);
+    scratch_release(work, stack);
 }
 
 void sc_bezier_point(const double *cp, int degree, int dim, int stride, double t, double *out)
 {
     double stack[STACK_DOUBLES];
     size_t need = (size_t)(degree + 1) * (size_t)dim;
-    double *left = need <= STACK_DOUBLES ? stack : sc_alloc(need, sizeof(double));
+    double *left = scratch(stack, STACK_DOUBLES, need);
     sc_bezier_split(cp, degree, dim, dim, t, left, NULL);
     memcpy(out, left + (size_t)degree * (size_t)dim, sizeof(double) * (size_t)dim);
-    if (left != stack)
-        free(left);
+    scratch_release(left, stack);
 }
 
 void sc_bezier_grid_split(const double *cp, int deg_u, int deg_v, int dir, double t,

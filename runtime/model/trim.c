@@ -18,14 +18,7 @@
 
 #include "bezier.h"
 #include "nurbs.h"
-
-static double binomial(int n, int k)
-{
-    double b = 1.0;
-    for (int i = 1; i <= k; i++)
-        b = b * (n - k + i) / i;
-    return b;
-}
+#include "nurbs_local.h"
 
 static int sign_changes(const double *c, int n)
 {
