@@ -108,4 +108,17 @@ void sc_surface_to_bezier(const sc_surface *s, sc_bezier_patch **patches,
                           int *count);
 void sc_bezier_patch_free(sc_bezier_patch *p);
 
+/* The Bézier patches of one surface in world space: sc_surface_to_bezier of
+ * the surface with its transform baked in, `surface` set to its index. A
+ * renderer decomposes each surface once this way and builds both the hulls
+ * and the GPU records from the same list, so that patch p of a surface is
+ * one thing to both. */
+typedef struct sc_patch_list {
+    int count;
+    sc_bezier_patch *patches;
+} sc_patch_list;
+
+void sc_surface_world_patches(const sc_surface *s, int index, sc_patch_list *out);
+void sc_patch_list_free(sc_patch_list *list);
+
 #endif

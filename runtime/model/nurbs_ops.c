@@ -709,3 +709,25 @@ void sc_bezier_patch_free(sc_bezier_patch *p)
     free(p->cp);
     p->cp = NULL;
 }
+
+void sc_surface_world_patches(const sc_surface *s, int index, sc_patch_list *out)
+{
+    sc_surface bare = *s, world;
+    bare.loops = NULL; /* patches do not need the trim loops */
+    bare.nloops = 0;
+    sc_surface_copy(&world, &bare);
+    sc_surface_bake_xform(&world);
+    sc_surface_to_bezier(&world, &out->patches, &out->count);
+    for (int p = 0; p < out->count; p++)
+        out->patches[p].surface = index;
+    sc_surface_free(&world);
+}
+
+void sc_patch_list_free(sc_patch_list *list)
+{
+    for (int p = 0; p < list->count; p++)
+        sc_bezier_patch_free(&list->patches[p]);
+    free(list->patches);
+    list->patches = NULL;
+    list->count = 0;
+}
