@@ -3,7 +3,9 @@
  * surfaces, 143 bounded surfaces and 510 B-rep faces, plus every 128 that
  * nothing references), with their parameter-space trim loops converted
  * exactly to 2D NURBS curves (lines, arcs as rational quadratics, B-splines,
- * composites).
+ * composites). The file is long on purpose: it is the one entity table of
+ * a large format, read in one pass from the surfaces down, and splitting it
+ * would spread one format's parser across files.
  *
  * Real files are sloppy where it costs nothing to forgive (no line breaks,
  * CRLF, wrong sequence numbers and status flags, a global section without a
