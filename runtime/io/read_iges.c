@@ -677,6 +677,16 @@ static int check_knot_vector(reader *r, const params *p, int first_param, const 
     return SC_OK;
 }
 
+/* Reads nk knots from parameter `at` on, then checks them. */
+static int read_knot_vector(reader *r, const params *p, int at, double *k, int nk, int degree,
+                            const char *what)
+{
+    for (int i = 0; i < nk; i++)
+        if (get_real(r, p, at + i, &k[i]))
+            return SC_FAIL;
+    return check_knot_vector(r, p, at, k, nk, degree, what);
+}
+
 /* ------------------------------------------------------------------ */
 /* Entity 128: rational B-spline surface                                */
 /* ------------------------------------------------------------------ */
@@ -706,16 +716,10 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
         return SC_FAIL;
     sc_surface_alloc(s, m1, m2, (int)nu, (int)nv);
     int at = 10;
-    for (int i = 0; i < nku; i++)
-        if (get_real(r, p, at + i, &s->knots_u[i]))
-            return SC_FAIL;
-    if (check_knot_vector(r, p, at, s->knots_u, (int)nku, m1, "u"))
+    if (read_knot_vector(r, p, at, s->knots_u, (int)nku, m1, "u"))
         return SC_FAIL;
     at += (int)nku;
-    for (int i = 0; i < nkv; i++)
-        if (get_real(r, p, at + i, &s->knots_v[i]))
-            return SC_FAIL;
-    if (check_knot_vector(r, p, at, s->knots_v, (int)nkv, m2, "v"))
+    if (read_knot_vector(r, p, at, s->knots_v, (int)nkv, m2, "v"))
         return SC_FAIL;
     at += (int)nkv;
     int npts = (int)(nu * nv), polynomial = prop[2] == 1, bad_weight = -1;
@@ -809,14 +813,22 @@ static void put_point(sc_curve *c, int i, const double m[12], double x, double y
     c->cp[3 * i + 2] = w;
 }
 
+/* The entity's first n parameters, all real. */
+static int leading_reals(reader *r, const params *p, int n, double *v)
+{
+    if (need_params(r, p, n))
+        return SC_FAIL;
+    for (int i = 0; i < n; i++)
+        if (get_real(r, p, i + 1, &v[i]))
+            return SC_FAIL;
+    return SC_OK;
+}
+
 static int read_110(reader *r, const params *p, const double m[12], curve_list *out)
 {
     double v[6];
-    if (need_params(r, p, 6))
+    if (leading_reals(r, p, 6, v))
         return SC_FAIL;
-    for (int i = 0; i < 6; i++)
-        if (get_real(r, p, i + 1, &v[i]))
-            return SC_FAIL;
     sc_curve *c = list_push(out);
     sc_curve_alloc(c, 2, 1, 2);
     c->knots[0] = c->knots[1] = 0;
@@ -832,11 +844,8 @@ static int read_110(reader *r, const params *p, const double m[12], curve_list *
 static int read_100(reader *r, const params *p, const double m[12], curve_list *out)
 {
     double v[7];
-    if (need_params(r, p, 7))
+    if (leading_reals(r, p, 7, v))
         return SC_FAIL;
-    for (int i = 0; i < 7; i++)
-        if (get_real(r, p, i + 1, &v[i]))
-            return SC_FAIL;
     double zt = v[0], cx = v[1], cy = v[2];
     double radius = hypot(v[3] - cx, v[4] - cy);
     if (!(radius > 0) || !isfinite(radius))
@@ -888,10 +897,7 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     sc_curve *c = list_push(out);
     sc_curve_alloc(c, 2, deg, (int)n);
     int at = 7;
-    for (int i = 0; i < nk; i++)
-        if (get_real(r, p, at + i, &c->knots[i]))
-            return SC_FAIL;
-    if (check_knot_vector(r, p, at, c->knots, (int)nk, deg, "curve"))
+    if (read_knot_vector(r, p, at, c->knots, (int)nk, deg, "curve"))
         return SC_FAIL;
     at += (int)nk;
     int bad_weight = -1;
@@ -927,6 +933,18 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
         sc_curve_restrict(c, c->knots[deg], c->knots[n]);
     }
     return SC_OK;
+}
+
+/* Curves [first, n) of the list run backwards: last first, each reversed. */
+static void reverse_chain(curve_list *l, int first)
+{
+    for (int i = first, j = l->n - 1; i < j; i++, j--) {
+        sc_curve t = l->items[i];
+        l->items[i] = l->items[j];
+        l->items[j] = t;
+    }
+    for (int i = first; i < l->n; i++)
+        sc_curve_reverse(&l->items[i]);
 }
 
 /* Appends the 2D curves of a parameter-space curve entity to `out`, in the
@@ -977,15 +995,8 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
     }
     en->busy = 0;
     params_free(&p);
-    if (status == SC_OK && reversed) {
-        for (int i = first, j = out->n - 1; i < j; i++, j--) {
-            sc_curve t = out->items[i];
-            out->items[i] = out->items[j];
-            out->items[j] = t;
-        }
-        for (int i = first; i < out->n; i++)
-            sc_curve_reverse(&out->items[i]);
-    }
+    if (status == SC_OK && reversed)
+        reverse_chain(out, first);
     return status;
 }
 
@@ -1065,15 +1076,8 @@ static int edge_curves(reader *r, const params *p, int first, int count, int str
         if (status)
             return status;
     }
-    if (reversed) {
-        for (int i = start, j = out->n - 1; i < j; i++, j--) {
-            sc_curve t = out->items[i];
-            out->items[i] = out->items[j];
-            out->items[j] = t;
-        }
-        for (int i = start; i < out->n; i++)
-            sc_curve_reverse(&out->items[i]);
-    }
+    if (reversed)
+        reverse_chain(out, start);
     return SC_OK;
 }
 

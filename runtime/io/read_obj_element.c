@@ -84,22 +84,25 @@ static int vertex_point(obj_reader *r, const obj_vertex *v, int index, int dim, 
     return SC_OK;
 }
 
-static const char *cstype_problem(const obj_element *el)
+/* Fails unless the element (a `what`) has a cstype this reader reads. */
+static int check_cstype(obj_reader *r, const char *what)
 {
-    if (el->cstype == CS_NONE)
-        return "no cstype statement comes before it";
-    if (el->cstype == CS_UNSUPPORTED)
-        return "its cstype is not supported (only bezier and bspline are)";
-    return NULL;
+    const obj_element *el = &r->el;
+    const char *problem = el->cstype == CS_NONE ? "no cstype statement comes before it"
+                          : el->cstype == CS_UNSUPPORTED
+                              ? "its cstype is not supported (only bezier and bspline are)"
+                              : NULL;
+    if (!problem)
+        return SC_OK;
+    return fail(r, el->cstype_line ? el->cstype_line : el->line, "%s at line %d: %s%s%s", what,
+                el->line, problem, el->cstype_name[0] ? ": " : "", el->cstype_name);
 }
 
 int sc_obj_finish_curv2(obj_reader *r)
 {
     obj_element *el = &r->el;
-    const char *problem = cstype_problem(el);
-    if (problem)
-        return fail(r, el->cstype_line ? el->cstype_line : el->line, "curv2 at line %d: %s%s%s",
-                    el->line, problem, el->cstype_name[0] ? ": " : "", el->cstype_name);
+    if (check_cstype(r, "curv2") != SC_OK)
+        return SC_FAIL;
     if (el->deg[0] < 1)
         return fail(r, el->line, "curv2 has no degree (deg statement missing)");
     double *knots;
@@ -168,10 +171,8 @@ static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_re
 int sc_obj_finish_surf(obj_reader *r)
 {
     obj_element *el = &r->el;
-    const char *problem = cstype_problem(el);
-    if (problem)
-        return fail(r, el->cstype_line ? el->cstype_line : el->line, "surf at line %d: %s%s%s",
-                    el->line, problem, el->cstype_name[0] ? ": " : "", el->cstype_name);
+    if (check_cstype(r, "surf") != SC_OK)
+        return SC_FAIL;
     if (el->deg[0] < 1 || el->deg[1] < 1)
         return fail(r, el->line, "surf needs a degree in u and in v (deg DU DV before it)");
     double *knots[2] = {NULL, NULL};

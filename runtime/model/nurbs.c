@@ -381,19 +381,17 @@ int sc_surface_normal(const sc_surface *s, double u, double v, double n[3])
      * a vanishing sv). This is the exact limit at the pole. */
     double lm = norm3(suv), small = lu < lv ? lu : lv;
     int collapsed = small <= COLLAPSED_RATIO * big;
-    if (collapsed && lu < lv) {
-        double sign = (v - v0 <= v1 - v) ? 1.0 : -1.0;
-        cross3(suv, sv, c);
+    if (collapsed) {
+        int su_vanishes = lu < lv;
+        double sign = su_vanishes ? (v - v0 <= v1 - v ? 1.0 : -1.0)
+                                  : (u - u0 <= u1 - u ? 1.0 : -1.0);
+        if (su_vanishes)
+            cross3(suv, sv, c);
+        else
+            cross3(su, suv, c);
         for (int k = 0; k < 3; k++)
             c[k] *= sign;
-        if (unit_if_clear(c, lm * lv, n) == 0)
-            return 0;
-    } else if (collapsed) {
-        double sign = (u - u0 <= u1 - u) ? 1.0 : -1.0;
-        cross3(su, suv, c);
-        for (int k = 0; k < 3; k++)
-            c[k] *= sign;
-        if (unit_if_clear(c, lu * lm, n) == 0)
+        if (unit_if_clear(c, su_vanishes ? lm * lv : lu * lm, n) == 0)
             return 0;
     }
 

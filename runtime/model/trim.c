@@ -300,11 +300,11 @@ int sc_trim_prepare(const sc_surface *s, sc_trim **out, sc_error *err)
 
 void sc_trim_free(sc_trim *trim)
 {
-    if (!trim)
-        return;
-    free(trim->pieces);
-    free(trim->bucket_start);
-    free(trim->bucket_items);
+    if (trim) {
+        free(trim->pieces);
+        free(trim->bucket_start);
+        free(trim->bucket_items);
+    }
     free(trim);
 }
 
