@@ -85,11 +85,13 @@ static int add_knots(arrays *a, const double *knots, int n)
     return first;
 }
 
-/* Appends surface s's data and fills its range. The records' trim-block
- * field holds the block's offset among the trim texels for now (-1 when
- * untrimmed); place_trim_blocks makes it a texel index. */
-static int build_surface(arrays *a, const sc_surface *surf, int surface_id, const scg_key *key,
-                         sc_gpu_surface *range, sc_error *err)
+/* Appends surface s's data and fills its range: `bez` surfaces one record
+ * per patch of `list`, their world-space Bézier patches. The records'
+ * trim-block field holds the block's offset among the trim texels for now
+ * (-1 when untrimmed); place_trim_blocks makes it a texel index. */
+static int build_surface(arrays *a, const sc_surface *surf, int surface_id,
+                         const sc_patch_list *list, const scg_key *key, sc_gpu_surface *range,
+                         sc_error *err)
 {
     sc_trim_block block = {0};
     if (key->trim != SC_TRIM_NONE && surf->nloops > 0 &&
@@ -103,31 +105,28 @@ static int build_surface(arrays *a, const sc_surface *surf, int surface_id, cons
     range->trim_count = a->ntrims - range->first_trim;
     sc_trim_block_free(&block);
 
-    sc_surface world;
-    sc_surface_copy(&world, surf);
-    sc_surface_bake_xform(&world);
     range->kind = key->kind;
     range->first_record = a->nrecords / SCG_RECORD_TEXELS;
     range->first_point = a->npoints;
     range->first_knot = a->nknots;
     if (key->kind == SCG_PATCH_NURBS) {
+        sc_surface world;
+        sc_surface_copy(&world, surf);
+        sc_surface_bake_xform(&world);
         int ku = add_knots(a, world.knots_u, world.nu + world.deg_u + 1);
         int kv = add_knots(a, world.knots_v, world.nv + world.deg_v + 1);
         double rect[4];
         sc_surface_domain(&world, &rect[0], &rect[1], &rect[2], &rect[3]);
         add_record(a, surface_id, world.deg_u, world.deg_v, world.nu, world.nv, world.cp, ku,
                    kv, rect);
+        sc_surface_free(&world);
     } else {
-        sc_bezier_patch *patches;
-        int count;
-        sc_surface_to_bezier(&world, &patches, &count);
-        for (int p = 0; p < count; p++) {
-            double rect[4] = {patches[p].u0, patches[p].u1, patches[p].v0, patches[p].v1};
-            add_record(a, surface_id, patches[p].deg_u, patches[p].deg_v,
-                       patches[p].deg_u + 1, patches[p].deg_v + 1, patches[p].cp, 0, 0, rect);
-            sc_bezier_patch_free(&patches[p]);
+        for (int p = 0; p < list->count; p++) {
+            const sc_bezier_patch *bp = &list->patches[p];
+            double rect[4] = {bp->u0, bp->u1, bp->v0, bp->v1};
+            add_record(a, surface_id, bp->deg_u, bp->deg_v, bp->deg_u + 1, bp->deg_v + 1, bp->cp,
+                       0, 0, rect);
         }
-        free(patches);
     }
     range->record_count = a->nrecords / SCG_RECORD_TEXELS - range->first_record;
     range->point_count = a->npoints - range->first_point;
@@ -135,7 +134,6 @@ static int build_surface(arrays *a, const sc_surface *surf, int surface_id, cons
     for (int r = range->first_record; r < range->first_record + range->record_count; r++)
         a->records[4 * (SCG_RECORD_TEXELS * r + 3) + 3] =
             range->trim_count ? (float)range->first_trim : -1.0f;
-    sc_surface_free(&world);
     return SC_OK;
 }
 
@@ -164,8 +162,9 @@ static const GLenum texture_formats[SCG_TEXTURE_COUNT] = {
     [SCG_TEX_RECORDS] = GL_RGBA32F,
 };
 
-int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *keys,
-                       sc_gpu_data *data, sc_error *err)
+int sc_gpu_data_upload_from(const sc_gl *gl, const sc_scene *scene,
+                            const sc_patch_list *patches, const scg_key *keys,
+                            sc_gpu_data *data, sc_error *err)
 {
     memset(data, 0, sizeof *data);
     arrays a = {0};
@@ -173,8 +172,8 @@ int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *ke
     data->surfaces = sc_alloc((size_t)(scene->nsurfaces ? scene->nsurfaces : 1),
                               sizeof *data->surfaces);
     for (int s = 0; s < scene->nsurfaces; s++)
-        if (build_surface(&a, &scene->surfaces[s], s, &keys[s], &data->surfaces[s], err) !=
-            SC_OK) {
+        if (build_surface(&a, &scene->surfaces[s], s, &patches[s], &keys[s], &data->surfaces[s],
+                          err) != SC_OK) {
             arrays_free(&a);
             sc_gpu_data_free(gl, data);
             return SC_FAIL;
@@ -228,8 +227,9 @@ int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *ke
     return SC_OK;
 }
 
-int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
-                               int surface, const scg_key *keys, int *moved, sc_error *err)
+int sc_gpu_data_update_surface_from(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
+                                    const sc_patch_list *patches, int surface,
+                                    const scg_key *keys, int *moved, sc_error *err)
 {
     if (moved)
         *moved = 0;
@@ -248,8 +248,8 @@ int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scen
     grow(&a.records, &a.nrecords, &a.cap_records, 0, 4);
     grow(&a.trims, &a.ntrims, &a.cap_trims, 0, 4);
     sc_gpu_surface fresh;
-    if (build_surface(&a, &scene->surfaces[surface], surface, &keys[surface], &fresh, err) !=
-        SC_OK) {
+    if (build_surface(&a, &scene->surfaces[surface], surface, &patches[surface], &keys[surface],
+                      &fresh, err) != SC_OK) {
         arrays_free(&a);
         return SC_FAIL;
     }
@@ -261,7 +261,7 @@ int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scen
         if (moved)
             *moved = 1;
         sc_gpu_data_free(gl, data);
-        return sc_gpu_data_upload(gl, scene, keys, data, err);
+        return sc_gpu_data_upload_from(gl, scene, patches, keys, data, err);
     }
     place_trim_blocks(&a, &fresh, data->nrecords);
     copy_centres(data, &a, old->first_record, old->record_count);
@@ -286,6 +286,42 @@ int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scen
                            (size_t)old->trim_count * 16;
     arrays_free(&a);
     return sc_gl_check(gl, "updating a surface's patch data", err);
+}
+
+/* The old entry points decompose the scene themselves, the same way. */
+static sc_patch_list *scene_patches(const sc_scene *scene)
+{
+    int n = scene->nsurfaces;
+    sc_patch_list *patches = sc_alloc((size_t)(n ? n : 1), sizeof *patches);
+    for (int s = 0; s < n; s++)
+        sc_surface_world_patches(&scene->surfaces[s], s, &patches[s]);
+    return patches;
+}
+
+static void scene_patches_free(const sc_scene *scene, sc_patch_list *patches)
+{
+    for (int s = 0; s < scene->nsurfaces; s++)
+        sc_patch_list_free(&patches[s]);
+    free(patches);
+}
+
+int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *keys,
+                       sc_gpu_data *data, sc_error *err)
+{
+    sc_patch_list *patches = scene_patches(scene);
+    int status = sc_gpu_data_upload_from(gl, scene, patches, keys, data, err);
+    scene_patches_free(scene, patches);
+    return status;
+}
+
+int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
+                               int surface, const scg_key *keys, int *moved, sc_error *err)
+{
+    sc_patch_list *patches = scene_patches(scene);
+    int status = sc_gpu_data_update_surface_from(gl, data, scene, patches, surface, keys, moved,
+                                                 err);
+    scene_patches_free(scene, patches);
+    return status;
 }
 
 void sc_gpu_data_bind(const sc_gl *gl, const sc_gpu_data *data)

@@ -11,7 +11,7 @@
 #include "gl_loader.h"
 #include "gpu_layout.h"
 #include "key.h"
-#include "scene.h"
+#include "nurbs.h"
 
 /* Where one surface's data sits. */
 typedef struct sc_gpu_surface {
@@ -38,20 +38,30 @@ typedef struct sc_gpu_data {
 
 /* Uploads every surface of the scene; keys[s], the key surface s is drawn
  * with, says how: its patch kind (`bez` or `nurbs`) and, for trimmed keys,
- * the trim degree its trim block is packed for. */
+ * the trim degree its trim block is packed for. A `bez` surface s gets one
+ * record per patch of patches[s], its world-space Bézier patches
+ * (sc_surface_world_patches), in their order: the renderer builds its hulls
+ * from the same lists. */
+int sc_gpu_data_upload_from(const sc_gl *gl, const sc_scene *scene,
+                            const sc_patch_list *patches, const scg_key *keys,
+                            sc_gpu_data *data, sc_error *err);
+/* After surface s of the scene changed (patches[s] made again from it):
+ * rewrites its ranges alone when its data keeps its size (same degrees,
+ * counts, kind and trim pieces), else uploads all; *moved (when not NULL)
+ * is then 1: the records of other surfaces may have new numbers. */
+int sc_gpu_data_update_surface_from(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
+                                    const sc_patch_list *patches, int surface,
+                                    const scg_key *keys, int *moved, sc_error *err);
+/* The same, decomposing the scene's surfaces themselves. */
 int sc_gpu_data_upload(const sc_gl *gl, const sc_scene *scene, const scg_key *keys,
                        sc_gpu_data *data, sc_error *err);
-/* After surface s of the scene changed: rewrites its ranges alone when its
- * data keeps its size (same degrees, counts, kind and trim pieces), else
- * uploads all; *moved (when not NULL) is then 1: the records of other
- * surfaces may have new numbers. */
 int sc_gpu_data_update_surface(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
                                int surface, const scg_key *keys, int *moved, sc_error *err);
 /* Binds the textures to their units (unit = scg_texture value). */
 void sc_gpu_data_bind(const sc_gl *gl, const sc_gpu_data *data);
 void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data);
 
-/* Record of Bézier patch `patch` (sc_surface_to_bezier numbering) of
+/* Record of Bézier patch `patch` (sc_patch_list numbering) of
  * surface s: its own record for `bez` surfaces, the surface's for `nurbs`. */
 int sc_gpu_data_record(const sc_gpu_data *data, int surface, int patch);
 /* The centre of a record (3 doubles). */

@@ -241,8 +241,13 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
             goto fail;
     }
     r->compile_ms = 1e3 * (sc_now() - t0);
-    if (sc_hulls_build(scene, &r->desc.hulls, &r->hulls, err) != SC_OK ||
-        sc_gpu_data_upload(gl, scene, r->keys, &r->data, err) != SC_OK)
+    /* Each surface is cut into Bézier patches once; hull i and the record
+     * it names come from the same patch. */
+    r->patches = sc_alloc((size_t)(n ? n : 1), sizeof *r->patches);
+    for (int s = 0; s < n; s++)
+        sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
+    if (sc_hulls_build_from(scene, r->patches, &r->desc.hulls, &r->hulls, err) != SC_OK ||
+        sc_gpu_data_upload_from(gl, scene, r->patches, r->keys, &r->data, err) != SC_OK)
         goto fail;
     setup_vertex_array(r);
     upload_colours(r);
@@ -279,6 +284,9 @@ void sc_renderer_destroy(sc_renderer *r)
     if (r->own_programs)
         sc_program_cache_destroy(r->programs);
     sc_hulls_free(&r->hulls);
+    for (int s = 0; r->patches && s < r->scene->nsurfaces; s++)
+        sc_patch_list_free(&r->patches[s]);
+    free(r->patches);
     free(r->groups);
     free(r->surface_group);
     free(r->hull_group);
@@ -308,11 +316,18 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     surface_key(&r->scene->surfaces[surface], &r->desc, &key);
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
+    sc_patch_list old = r->patches[surface];
+    sc_surface_world_patches(&r->scene->surfaces[surface], surface, &r->patches[surface]);
     int hulls_moved, records_moved;
-    if (sc_hulls_update_surface(&r->hulls, r->scene, surface, &hulls_moved, err) != SC_OK ||
-        sc_gpu_data_update_surface(r->gl, &r->data, r->scene, surface, r->keys, &records_moved,
-                                   err) != SC_OK)
+    if (sc_hulls_update_surface_from(&r->hulls, r->scene, surface, &r->patches[surface],
+                                     &hulls_moved, err) != SC_OK ||
+        sc_gpu_data_update_surface_from(r->gl, &r->data, r->scene, r->patches, surface, r->keys,
+                                        &records_moved, err) != SC_OK) {
+        sc_patch_list_free(&r->patches[surface]);
+        r->patches[surface] = old;
         return SC_FAIL;
+    }
+    sc_patch_list_free(&old);
     /* Vertices carry their record's number and centre: when other hulls or
      * records moved, every vertex is written again. */
     if (!hulls_moved && !records_moved) {

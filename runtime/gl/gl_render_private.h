@@ -97,6 +97,8 @@ struct sc_renderer {
     sc_program *surface_program;
     sc_program_cache *programs;
     int own_programs;        /* the cache is the renderer's (not desc.programs) */
+    sc_patch_list *patches;  /* per surface: its world-space Bézier patches,
+                                which hulls and records are both built from */
     sc_gpu_data data;
     sc_hulls hulls;
     int ngroups;

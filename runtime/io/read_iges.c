@@ -3,7 +3,9 @@
  * surfaces, 143 bounded surfaces and 510 B-rep faces, plus every 128 that
  * nothing references), with their parameter-space trim loops converted
  * exactly to 2D NURBS curves (lines, arcs as rational quadratics, B-splines,
- * composites).
+ * composites). The file is long on purpose: it is the one entity table of
+ * a large format, read in one pass from the surfaces down, and splitting it
+ * would spread one format's parser across files.
  *
  * Real files are sloppy where it costs nothing to forgive (no line breaks,
  * CRLF, wrong sequence numbers and status flags, a global section without a
@@ -656,87 +658,8 @@ static int entity_color(reader *r, int e, float rgb[3])
 }
 
 /* ------------------------------------------------------------------ */
-/* Domains: clamping and sub-ranges                                     */
+/* Domains: knot checks (clamping and sub-ranges are in nurbs.h)        */
 /* ------------------------------------------------------------------ */
-
-/* A requested domain end within rounding of a knot is that knot, so that
- * no sliver span is created. */
-static double snap_to_knot(double t, const double *knots, int nk, double scale)
-{
-    for (int i = 0; i < nk; i++)
-        if (fabs(t - knots[i]) <= 1e-10 * scale)
-            return knots[i];
-    return t;
-}
-
-/* Replaces the curve by its piece over [a, b] (within its domain), with
- * clamped knots at both ends. */
-static void curve_restrict(sc_curve *c, double a, double b)
-{
-    int p = c->degree, nk = c->ncp + p + 1;
-    double t0 = c->knots[p], t1 = c->knots[c->ncp], scale = t1 - t0;
-    a = snap_to_knot(a < t0 ? t0 : a, c->knots, nk, scale);
-    b = snap_to_knot(b > t1 ? t1 : b, c->knots, nk, scale);
-    if (!(a < b)) {
-        a = t0;
-        b = t1;
-    }
-    int clamped = c->knots[0] == t0 && c->knots[nk - 1] == t1;
-    if (clamped && a == t0 && b == t1)
-        return;
-    sc_curve work, lo, hi;
-    sc_curve_clamp(c, &work);
-    sc_curve_domain(&work, &t0, &t1);
-    if (a > t0) {
-        sc_curve_split(&work, a, &lo, &hi);
-        sc_curve_free(&lo);
-        sc_curve_free(&work);
-        work = hi;
-    }
-    sc_curve_domain(&work, &t0, &t1);
-    if (b < t1) {
-        sc_curve_split(&work, b, &lo, &hi);
-        sc_curve_free(&hi);
-        sc_curve_free(&work);
-        work = lo;
-    }
-    sc_curve_free(c);
-    *c = work;
-}
-
-static void surface_restrict(sc_surface *s, int dir, double a, double b)
-{
-    int p = dir ? s->deg_v : s->deg_u, n = dir ? s->nv : s->nu, nk = n + p + 1;
-    const double *k = dir ? s->knots_v : s->knots_u;
-    double t0 = k[p], t1 = k[n], scale = t1 - t0;
-    a = snap_to_knot(a < t0 ? t0 : a, k, nk, scale);
-    b = snap_to_knot(b > t1 ? t1 : b, k, nk, scale);
-    if (!(a < b)) {
-        a = t0;
-        b = t1;
-    }
-    int clamped = k[0] == t0 && k[nk - 1] == t1;
-    if (clamped && a == t0 && b == t1)
-        return;
-    sc_surface work, lo, hi;
-    sc_surface_clamp(s, &work);
-    const double *kw = dir ? work.knots_v : work.knots_u;
-    if (a > kw[p]) {
-        sc_surface_split(&work, dir, a, &lo, &hi);
-        sc_surface_free(&lo);
-        sc_surface_free(&work);
-        work = hi;
-    }
-    kw = dir ? work.knots_v : work.knots_u;
-    if (b < kw[dir ? work.nv : work.nu]) {
-        sc_surface_split(&work, dir, b, &lo, &hi);
-        sc_surface_free(&hi);
-        sc_surface_free(&work);
-        work = lo;
-    }
-    sc_surface_free(s);
-    *s = work;
-}
 
 /* Knots: finite and non-decreasing with a non-empty domain. */
 static int check_knot_vector(reader *r, const params *p, int first_param, const double *k,
@@ -752,6 +675,16 @@ static int check_knot_vector(reader *r, const params *p, int first_param, const 
                            "%s knot vector has an empty domain [%.17g, %.17g]", what, k[degree],
                            k[nk - 1 - degree]);
     return SC_OK;
+}
+
+/* Reads nk knots from parameter `at` on, then checks them. */
+static int read_knot_vector(reader *r, const params *p, int at, double *k, int nk, int degree,
+                            const char *what)
+{
+    for (int i = 0; i < nk; i++)
+        if (get_real(r, p, at + i, &k[i]))
+            return SC_FAIL;
+    return check_knot_vector(r, p, at, k, nk, degree, what);
 }
 
 /* ------------------------------------------------------------------ */
@@ -783,16 +716,10 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
         return SC_FAIL;
     sc_surface_alloc(s, m1, m2, (int)nu, (int)nv);
     int at = 10;
-    for (int i = 0; i < nku; i++)
-        if (get_real(r, p, at + i, &s->knots_u[i]))
-            return SC_FAIL;
-    if (check_knot_vector(r, p, at, s->knots_u, (int)nku, m1, "u"))
+    if (read_knot_vector(r, p, at, s->knots_u, (int)nku, m1, "u"))
         return SC_FAIL;
     at += (int)nku;
-    for (int i = 0; i < nkv; i++)
-        if (get_real(r, p, at + i, &s->knots_v[i]))
-            return SC_FAIL;
-    if (check_knot_vector(r, p, at, s->knots_v, (int)nkv, m2, "v"))
+    if (read_knot_vector(r, p, at, s->knots_v, (int)nkv, m2, "v"))
         return SC_FAIL;
     at += (int)nkv;
     int npts = (int)(nu * nv), polynomial = prop[2] == 1, bad_weight = -1;
@@ -827,12 +754,12 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
             if (get_real(r, p, at + i, &range[i]))
                 return SC_FAIL;
         if (range[0] < range[1])
-            surface_restrict(s, 0, range[0], range[1]);
+            sc_surface_restrict(s, 0, range[0], range[1]);
         if (range[2] < range[3])
-            surface_restrict(s, 1, range[2], range[3]);
+            sc_surface_restrict(s, 1, range[2], range[3]);
     } else {
-        surface_restrict(s, 0, s->knots_u[m1], s->knots_u[s->nu]);
-        surface_restrict(s, 1, s->knots_v[m2], s->knots_v[s->nv]);
+        sc_surface_restrict(s, 0, s->knots_u[m1], s->knots_u[s->nu]);
+        sc_surface_restrict(s, 1, s->knots_v[m2], s->knots_v[s->nv]);
     }
     sc_surface_update_rational(s);
     sc_error check;
@@ -886,31 +813,22 @@ static void put_point(sc_curve *c, int i, const double m[12], double x, double y
     c->cp[3 * i + 2] = w;
 }
 
-static void curve_reverse(sc_curve *c)
+/* The entity's first n parameters, all real. */
+static int leading_reals(reader *r, const params *p, int n, double *v)
 {
-    int nk = c->ncp + c->degree + 1, stride = c->dim + 1;
-    double a = c->knots[0], b = c->knots[nk - 1];
-    for (int i = 0, j = nk - 1; i <= j; i++, j--) {
-        double ki = c->knots[i], kj = c->knots[j];
-        c->knots[i] = a + b - kj;
-        c->knots[j] = a + b - ki;
-    }
-    for (int i = 0, j = c->ncp - 1; i < j; i++, j--)
-        for (int d = 0; d < stride; d++) {
-            double t = c->cp[i * stride + d];
-            c->cp[i * stride + d] = c->cp[j * stride + d];
-            c->cp[j * stride + d] = t;
-        }
+    if (need_params(r, p, n))
+        return SC_FAIL;
+    for (int i = 0; i < n; i++)
+        if (get_real(r, p, i + 1, &v[i]))
+            return SC_FAIL;
+    return SC_OK;
 }
 
 static int read_110(reader *r, const params *p, const double m[12], curve_list *out)
 {
     double v[6];
-    if (need_params(r, p, 6))
+    if (leading_reals(r, p, 6, v))
         return SC_FAIL;
-    for (int i = 0; i < 6; i++)
-        if (get_real(r, p, i + 1, &v[i]))
-            return SC_FAIL;
     sc_curve *c = list_push(out);
     sc_curve_alloc(c, 2, 1, 2);
     c->knots[0] = c->knots[1] = 0;
@@ -926,11 +844,8 @@ static int read_110(reader *r, const params *p, const double m[12], curve_list *
 static int read_100(reader *r, const params *p, const double m[12], curve_list *out)
 {
     double v[7];
-    if (need_params(r, p, 7))
+    if (leading_reals(r, p, 7, v))
         return SC_FAIL;
-    for (int i = 0; i < 7; i++)
-        if (get_real(r, p, i + 1, &v[i]))
-            return SC_FAIL;
     double zt = v[0], cx = v[1], cy = v[2];
     double radius = hypot(v[3] - cx, v[4] - cy);
     if (!(radius > 0) || !isfinite(radius))
@@ -982,10 +897,7 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     sc_curve *c = list_push(out);
     sc_curve_alloc(c, 2, deg, (int)n);
     int at = 7;
-    for (int i = 0; i < nk; i++)
-        if (get_real(r, p, at + i, &c->knots[i]))
-            return SC_FAIL;
-    if (check_knot_vector(r, p, at, c->knots, (int)nk, deg, "curve"))
+    if (read_knot_vector(r, p, at, c->knots, (int)nk, deg, "curve"))
         return SC_FAIL;
     at += (int)nk;
     int bad_weight = -1;
@@ -1014,13 +926,25 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
         if (get_real(r, p, at, &range[0]) || get_real(r, p, at + 1, &range[1]))
             return SC_FAIL;
         if (range[0] < range[1])
-            curve_restrict(c, range[0], range[1]);
+            sc_curve_restrict(c, range[0], range[1]);
         else
-            curve_restrict(c, c->knots[deg], c->knots[n]);
+            sc_curve_restrict(c, c->knots[deg], c->knots[n]);
     } else {
-        curve_restrict(c, c->knots[deg], c->knots[n]);
+        sc_curve_restrict(c, c->knots[deg], c->knots[n]);
     }
     return SC_OK;
+}
+
+/* Curves [first, n) of the list run backwards: last first, each reversed. */
+static void reverse_chain(curve_list *l, int first)
+{
+    for (int i = first, j = l->n - 1; i < j; i++, j--) {
+        sc_curve t = l->items[i];
+        l->items[i] = l->items[j];
+        l->items[j] = t;
+    }
+    for (int i = first; i < l->n; i++)
+        sc_curve_reverse(&l->items[i]);
 }
 
 /* Appends the 2D curves of a parameter-space curve entity to `out`, in the
@@ -1071,15 +995,8 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
     }
     en->busy = 0;
     params_free(&p);
-    if (status == SC_OK && reversed) {
-        for (int i = first, j = out->n - 1; i < j; i++, j--) {
-            sc_curve t = out->items[i];
-            out->items[i] = out->items[j];
-            out->items[j] = t;
-        }
-        for (int i = first; i < out->n; i++)
-            curve_reverse(&out->items[i]);
-    }
+    if (status == SC_OK && reversed)
+        reverse_chain(out, first);
     return status;
 }
 
@@ -1101,12 +1018,12 @@ static void orient_chain(curve_list *l)
     double fwd = fmin(point_distance(&c[0], last0, &c[1], 0), point_distance(&c[0], last0, &c[1], last1));
     double rev = fmin(point_distance(&c[0], 0, &c[1], 0), point_distance(&c[0], 0, &c[1], last1));
     if (rev < fwd)
-        curve_reverse(&c[0]);
+        sc_curve_reverse(&c[0]);
     for (int i = 1; i < l->n; i++) {
         int prev_end = c[i - 1].ncp - 1;
         if (point_distance(&c[i - 1], prev_end, &c[i], c[i].ncp - 1) <
             point_distance(&c[i - 1], prev_end, &c[i], 0))
-            curve_reverse(&c[i]);
+            sc_curve_reverse(&c[i]);
     }
 }
 
@@ -1159,15 +1076,8 @@ static int edge_curves(reader *r, const params *p, int first, int count, int str
         if (status)
             return status;
     }
-    if (reversed) {
-        for (int i = start, j = out->n - 1; i < j; i++, j--) {
-            sc_curve t = out->items[i];
-            out->items[i] = out->items[j];
-            out->items[j] = t;
-        }
-        for (int i = start; i < out->n; i++)
-            curve_reverse(&out->items[i]);
-    }
+    if (reversed)
+        reverse_chain(out, start);
     return SC_OK;
 }
 
@@ -1479,7 +1389,7 @@ static void unwrap_seams(sc_surface *s)
             join_period(s, dir, 1);
         if (hi > b + slack)
             join_period(s, dir, 0);
-        surface_restrict(s, dir, lo, hi);
+        sc_surface_restrict(s, dir, lo, hi);
         s->loops = loops;
         s->nloops = nloops;
     }

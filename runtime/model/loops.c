@@ -10,6 +10,7 @@
  * counts depends only on the loop's shape, never on what was repaired, so
  * that validating a validated loop (a scene written and read back) changes
  * nothing. */
+#include "bezier.h"
 #include "nurbs.h"
 #include "trim.h"
 
@@ -130,20 +131,10 @@ static void flatten_bezier(const double *B, int degree, double tol, int depth, i
         poly_push(pl, E[0] / E[2], E[1] / E[2], curve);
         return;
     }
-    /* de Casteljau at the middle, in homogeneous form. */
     size_t npts = (size_t)degree + 1;
-    double *tri = sc_alloc(npts * 3, sizeof(double));
     double *left = sc_alloc(npts * 3, sizeof(double));
     double *right = sc_alloc(npts * 3, sizeof(double));
-    memcpy(tri, B, sizeof(double) * npts * 3);
-    for (int r = 0; r <= degree; r++) {
-        memcpy(left + 3 * r, tri, 3 * sizeof(double));
-        memcpy(right + 3 * (degree - r), tri + 3 * (degree - r), 3 * sizeof(double));
-        for (int i = 0; i < degree - r; i++)
-            for (int k = 0; k < 3; k++)
-                tri[3 * i + k] = 0.5 * (tri[3 * i + k] + tri[3 * (i + 1) + k]);
-    }
-    free(tri);
+    sc_bezier_split(B, degree, 3, 3, 0.5, left, right);
     flatten_bezier(left, degree, tol, depth + 1, curve, pl);
     flatten_bezier(right, degree, tol, depth + 1, curve, pl);
     free(left);

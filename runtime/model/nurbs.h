@@ -1,8 +1,10 @@
 /* nurbs.h — the NURBS core in double precision: knot spans, basis functions
  * and derivatives, curve and surface evaluation (rational by the quotient
  * rule), knot insertion and refinement, Bézier extraction, splitting, degree
- * elevation and a normal that survives collapsed edges. Algorithms follow
- * Piegl & Tiller, The NURBS Book (A2.1–A2.3, A4.x, A5.x). */
+ * elevation, restriction and reversal, and a normal that survives collapsed
+ * edges. Algorithms follow Piegl & Tiller, The NURBS Book (A2.1–A2.3, A4.x,
+ * A5.x). Evaluation is in nurbs.c, the operations in nurbs_ops.c, the
+ * de Casteljau split of Bézier pieces in bezier.h. */
 #ifndef SC_NURBS_H
 #define SC_NURBS_H
 
@@ -58,6 +60,22 @@ void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out);
  * inserted to multiplicity degree and the control points outside dropped;
  * a clamped curve (or one with an empty domain) is copied as it is. */
 void sc_curve_clamp(const sc_curve *c, sc_curve *out);
+/* ---- in place: these replace their argument (readers apply them to what
+ * they have just built). ---- */
+/* The clamped piece of the curve over [a, b]: an end outside the domain is
+ * moved onto it, an end within 1e-10 of the domain's size of a knot is
+ * that knot (no sliver spans), and an empty range keeps the whole domain
+ * (the curve is then only clamped). */
+void sc_curve_restrict(sc_curve *c, double a, double b);
+/* The same curve run backwards on the same domain [a, b]: knots reflected
+ * within it (k -> a + b - k, the ends exchanged exactly), control points in
+ * reverse order. */
+void sc_curve_reverse(sc_curve *c);
+/* sc_curve_restrict along dir for every row (dir 0) or column (dir 1); the
+ * result is clamped in both directions and keeps the trim loops, which
+ * restriction does not move. */
+void sc_surface_restrict(sc_surface *s, int dir, double a, double b);
+
 /* Bézier segments: *count segments written to a new array of curves, each
  * with degree+1 control points and knots [a..a b..b] keeping its original
  * parameter interval. */
@@ -89,5 +107,18 @@ typedef struct sc_bezier_patch {
 void sc_surface_to_bezier(const sc_surface *s, sc_bezier_patch **patches,
                           int *count);
 void sc_bezier_patch_free(sc_bezier_patch *p);
+
+/* The Bézier patches of one surface in world space: sc_surface_to_bezier of
+ * the surface with its transform baked in, `surface` set to its index. A
+ * renderer decomposes each surface once this way and builds both the hulls
+ * and the GPU records from the same list, so that patch p of a surface is
+ * one thing to both. */
+typedef struct sc_patch_list {
+    int count;
+    sc_bezier_patch *patches;
+} sc_patch_list;
+
+void sc_surface_world_patches(const sc_surface *s, int index, sc_patch_list *out);
+void sc_patch_list_free(sc_patch_list *list);
 
 #endif

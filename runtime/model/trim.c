@@ -16,51 +16,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bezier.h"
 #include "nurbs.h"
-
-/* De Casteljau split of a homogeneous 2D curve (3 doubles per point) at t;
- * left or right may be NULL. */
-static void split_curve(const double *cp, int degree, double t, double *left, double *right)
-{
-    double work[3 * (SC_TRIM_MAX_DEGREE + 1)];
-    memcpy(work, cp, sizeof(double) * 3 * (size_t)(degree + 1));
-    for (int c = 0; c < 3; c++) {
-        if (left)
-            left[c] = work[c];
-        if (right)
-            right[3 * degree + c] = work[3 * degree + c];
-    }
-    for (int r = 1; r <= degree; r++) {
-        for (int i = 0; i <= degree - r; i++)
-            for (int c = 0; c < 3; c++)
-                work[3 * i + c] = (1.0 - t) * work[3 * i + c] + t * work[3 * (i + 1) + c];
-        for (int c = 0; c < 3; c++) {
-            if (left)
-                left[3 * r + c] = work[c];
-            if (right)
-                right[3 * (degree - r) + c] = work[3 * (degree - r) + c];
-        }
-    }
-}
-
-static double binomial(int n, int k)
-{
-    double b = 1.0;
-    for (int i = 1; i <= k; i++)
-        b = b * (n - k + i) / i;
-    return b;
-}
-
-/* Value of a Bernstein polynomial (coefficients c[0..n]) at t. */
-static double bernstein_eval(const double *c, int n, double t)
-{
-    double work[2 * SC_TRIM_MAX_DEGREE + 1];
-    memcpy(work, c, sizeof(double) * (size_t)(n + 1));
-    for (int r = 1; r <= n; r++)
-        for (int i = 0; i <= n - r; i++)
-            work[i] = (1.0 - t) * work[i] + t * work[i + 1];
-    return work[0];
-}
+#include "nurbs_local.h"
 
 static int sign_changes(const double *c, int n)
 {
@@ -94,7 +52,8 @@ static void bernstein_roots(const double *c, int n, double a, double b, int dept
             double mid = 0.5 * (lo + hi);
             if (mid <= lo || mid >= hi)
                 break;
-            double fm = bernstein_eval(c, n, mid);
+            double fm;
+            sc_bezier_point(c, n, 1, 1, mid, &fm);
             if ((fm < 0) == (flo < 0) && fm != 0) {
                 lo = mid;
                 flo = fm;
@@ -105,18 +64,8 @@ static void bernstein_roots(const double *c, int n, double a, double b, int dept
         roots[(*nroots)++] = a + (b - a) * 0.5 * (lo + hi);
         return;
     }
-    /* Split the coefficients at 0.5 (de Casteljau, one value per row). */
-    double left[2 * SC_TRIM_MAX_DEGREE + 1], right[2 * SC_TRIM_MAX_DEGREE + 1],
-        work[2 * SC_TRIM_MAX_DEGREE + 1];
-    memcpy(work, c, sizeof(double) * (size_t)(n + 1));
-    left[0] = work[0];
-    right[n] = work[n];
-    for (int r = 1; r <= n; r++) {
-        for (int i = 0; i <= n - r; i++)
-            work[i] = 0.5 * (work[i] + work[i + 1]);
-        left[r] = work[0];
-        right[n - r] = work[n - r];
-    }
+    double left[2 * SC_TRIM_MAX_DEGREE + 1], right[2 * SC_TRIM_MAX_DEGREE + 1];
+    sc_bezier_split(c, n, 1, 1, 0.5, left, right);
     double m = 0.5 * (a + b);
     bernstein_roots(left, n, a, m, depth + 1, roots, nroots, max_roots);
     bernstein_roots(right, n, m, b, depth + 1, roots, nroots, max_roots);
@@ -199,7 +148,7 @@ static void add_segment_pieces(piece_list *list, const double *cp, int p, int lo
         if (k < nroots) {
             double local = (roots[k] - consumed) / (1.0 - consumed);
             double right[3 * (SC_TRIM_MAX_DEGREE + 1)];
-            split_curve(rest, p, local, piece->cp, right);
+            sc_bezier_split(rest, p, 3, 3, local, piece->cp, right);
             memcpy(rest, right, sizeof right);
             consumed = roots[k];
         } else {
@@ -351,11 +300,11 @@ int sc_trim_prepare(const sc_surface *s, sc_trim **out, sc_error *err)
 
 void sc_trim_free(sc_trim *trim)
 {
-    if (!trim)
-        return;
-    free(trim->pieces);
-    free(trim->bucket_start);
-    free(trim->bucket_items);
+    if (trim) {
+        free(trim->pieces);
+        free(trim->bucket_start);
+        free(trim->bucket_items);
+    }
     free(trim);
 }
 
@@ -383,7 +332,7 @@ static int piece_crosses(const sc_trim_piece *piece, double u, double v)
             return 0;
         if (umin > u)
             return 1;
-        split_curve(cp, p, 0.5, left, cp);
+        sc_bezier_split(cp, p, 3, 3, 0.5, left, cp);
         /* The split point is the last control point of the left half. */
         double v_mid = left[3 * p + 1] / left[3 * p + 2];
         if (v < v_mid)

@@ -1,7 +1,8 @@
-/* hulls.c — sub-patches and their convex hulls (hulls.h). Surfaces become
- * Bézier patches by knot insertion (nurbs.h); a Bézier patch is split
- * further by de Casteljau at the middle of its rectangle, which is knot
- * insertion to full multiplicity. Hulls come from libqhull's reentrant API
+/* hulls.c — sub-patches and their convex hulls (hulls.h). Hulls are built
+ * from the world-space Bézier patches of each surface
+ * (sc_surface_world_patches), the same ones the renderer packs into GPU
+ * records; a Bézier patch is split further by de Casteljau (bezier.h),
+ * which is knot insertion to full multiplicity. Hulls come from libqhull's reentrant API
  * with triangulated output ("Qt"). */
 #include "hulls.h"
 
@@ -11,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bezier.h"
 #include "nurbs.h"
 
 enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8 };
@@ -47,43 +49,21 @@ static size_t piece_points(const piece *p)
  * insertion to full multiplicity. */
 static void split_at(const piece *p, int dir, double f, piece *lo, piece *hi)
 {
-    int nu = p->deg_u + 1, nv = p->deg_v + 1;
-    int n = dir == 0 ? nu : nv;
-    int lines = dir == 0 ? nv : nu;
     *lo = *hi = *p;
     lo->cp = sc_alloc(piece_points(p) * 4, sizeof(double));
     hi->cp = sc_alloc(piece_points(p) * 4, sizeof(double));
     double cut = p->local[2 * dir] + f * (p->local[2 * dir + 1] - p->local[2 * dir]);
     lo->local[2 * dir + 1] = cut;
     hi->local[2 * dir] = cut;
-    double *work = sc_alloc((size_t)n * 4, sizeof(double));
-    for (int line = 0; line < lines; line++) {
-        for (int k = 0; k < n; k++) {
-            int i = dir == 0 ? k : line, j = dir == 0 ? line : k;
-            memcpy(work + 4 * k, p->cp + 4 * (j * nu + i), 4 * sizeof(double));
-        }
-        /* After round r, work[0] is the r-th point of the lower part and
-         * work[n-1-r] the mirrored one of the upper part. */
-        for (int r = 0; r < n; r++) {
-            int i_lo = dir == 0 ? r : line, j_lo = dir == 0 ? line : r;
-            int i_hi = dir == 0 ? n - 1 - r : line, j_hi = dir == 0 ? line : n - 1 - r;
-            memcpy(lo->cp + 4 * (j_lo * nu + i_lo), work, 4 * sizeof(double));
-            memcpy(hi->cp + 4 * (j_hi * nu + i_hi), work + 4 * (n - 1 - r),
-                   4 * sizeof(double));
-            for (int k = 0; k < n - 1 - r; k++)
-                for (int c = 0; c < 4; c++)
-                    work[4 * k + c] = (1 - f) * work[4 * k + c] + f * work[4 * (k + 1) + c];
-        }
-    }
-    free(work);
+    sc_bezier_grid_split(p->cp, p->deg_u, p->deg_v, dir, f, lo->cp, hi->cp);
 }
 
-/* Euclidean world-space point (i, j) of a piece. */
-static void piece_point(const builder *b, const piece *p, int i, int j, double out[3])
+/* Euclidean point (i, j) of a piece (world space, as its patch). */
+static void piece_point(const piece *p, int i, int j, double out[3])
 {
     const double *h = p->cp + 4 * (j * (p->deg_u + 1) + i);
-    double e[3] = {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
-    sc_xform_point(b->surface->xform, e, out);
+    for (int c = 0; c < 3; c++)
+        out[c] = h[c] / h[3];
 }
 
 static double dist3(const double a[3], const double b[3])
@@ -100,25 +80,25 @@ static double piece_flatness(const builder *b, const piece *p, int *split_dir)
 {
     int du = p->deg_u, dv = p->deg_v;
     double c00[3], c10[3], c01[3], c11[3];
-    piece_point(b, p, 0, 0, c00);
-    piece_point(b, p, du, 0, c10);
-    piece_point(b, p, 0, dv, c01);
-    piece_point(b, p, du, dv, c11);
+    piece_point(p, 0, 0, c00);
+    piece_point(p, du, 0, c10);
+    piece_point(p, 0, dv, c01);
+    piece_point(p, du, dv, c11);
     double bilinear = 0, along_u = 0, along_v = 0;
     for (int j = 0; j <= dv; j++)
         for (int i = 0; i <= du; i++) {
             double s = (double)i / du, t = (double)j / dv, q[3], x[3];
-            piece_point(b, p, i, j, x);
+            piece_point(p, i, j, x);
             for (int c = 0; c < 3; c++)
                 q[c] = (1 - t) * ((1 - s) * c00[c] + s * c10[c]) +
                        t * ((1 - s) * c01[c] + s * c11[c]);
             bilinear = fmax(bilinear, dist3(x, q));
             /* chords of the row j (along u) and of the column i (along v) */
             double r0[3], r1[3], k0[3], k1[3], on_row[3], on_col[3];
-            piece_point(b, p, 0, j, r0);
-            piece_point(b, p, du, j, r1);
-            piece_point(b, p, i, 0, k0);
-            piece_point(b, p, i, dv, k1);
+            piece_point(p, 0, j, r0);
+            piece_point(p, du, j, r1);
+            piece_point(p, i, 0, k0);
+            piece_point(p, i, dv, k1);
             for (int c = 0; c < 3; c++) {
                 on_row[c] = (1 - s) * r0[c] + s * r1[c];
                 on_col[c] = (1 - t) * k0[c] + t * k1[c];
@@ -224,7 +204,7 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     for (int j = 0; j <= p->deg_v; j++)
         for (int i = 0; i <= p->deg_u; i++) {
             double *x = world + 3 * (j * (p->deg_u + 1) + i);
-            piece_point(b, p, i, j, x);
+            piece_point(p, i, j, x);
             for (int c = 0; c < 3; c++) {
                 lo[c] = fmin(lo[c], x[c]);
                 hi[c] = fmax(hi[c], x[c]);
@@ -345,6 +325,23 @@ static int refine(builder *b, piece *p, int depth, sc_error *err)
     return status;
 }
 
+/* The k-th of n equal parts along dir, cut off the front of *rest, which
+ * holds parts k..n-1 and is left holding k+1..n-1 (the last part is rest
+ * itself). */
+static piece cut_off(piece *rest, int dir, int k, int n)
+{
+    piece part = *rest;
+    if (k < n - 1) {
+        piece next;
+        split_at(rest, dir, 1.0 / (n - k), &part, &next);
+        free(rest->cp);
+        *rest = next;
+    } else {
+        rest->cp = NULL;
+    }
+    return part;
+}
+
 /* Uniform refinement: n × n pieces of equal parameter size, cut off strip
  * by strip at 1/n, 1/(n-1), … of what is left. */
 static int uniform(builder *b, const piece *whole, int n, sc_error *err)
@@ -354,25 +351,9 @@ static int uniform(builder *b, const piece *whole, int n, sc_error *err)
     memcpy(rest_u.cp, whole->cp, piece_points(whole) * 4 * sizeof(double));
     int status = SC_OK;
     for (int a = 0; a < n && status == SC_OK; a++) {
-        piece strip, next_u;
-        if (a < n - 1) {
-            split_at(&rest_u, 0, 1.0 / (n - a), &strip, &next_u);
-            free(rest_u.cp);
-            rest_u = next_u;
-        } else {
-            strip = rest_u;
-            rest_u.cp = NULL;
-        }
+        piece strip = cut_off(&rest_u, 0, a, n);
         for (int c = 0; c < n && status == SC_OK; c++) {
-            piece cell, next_v;
-            if (c < n - 1) {
-                split_at(&strip, 1, 1.0 / (n - c), &cell, &next_v);
-                free(strip.cp);
-                strip = next_v;
-            } else {
-                cell = strip;
-                strip.cp = NULL;
-            }
+            piece cell = cut_off(&strip, 1, c, n);
             status = emit_hull(b, &cell, err);
             free(cell.cp);
         }
@@ -392,48 +373,42 @@ static int builder_open(builder *b, sc_hulls *out, sc_error *err)
     return SC_OK;
 }
 
-/* Appends the hulls of surface si and says where they went. */
-static int build_surface(builder *b, const sc_scene *scene, int si, sc_hull_range *range,
-                         sc_error *err)
+/* Appends the hulls of surface si, built from its world-space patches,
+ * and says where they went. */
+static int build_surface(builder *b, const sc_scene *scene, int si, const sc_patch_list *list,
+                         sc_hull_range *range, sc_error *err)
 {
     sc_hulls *h = b->out;
-    const sc_surface *surf = &scene->surfaces[si];
-    sc_bezier_patch *patches;
-    int npatches;
-    sc_surface_to_bezier(surf, &patches, &npatches);
-    b->surface = surf;
+    b->surface = &scene->surfaces[si];
     b->surface_index = si;
     range->first_subpatch = h->count;
     range->first_vertex = h->nvertices;
     range->first_index = h->nindices;
     int status = SC_OK;
-    for (int pi = 0; pi < npatches && status == SC_OK; pi++) {
-        b->patch = &patches[pi];
+    for (int pi = 0; pi < list->count && status == SC_OK; pi++) {
+        const sc_bezier_patch *bp = &list->patches[pi];
+        b->patch = bp;
         b->patch_index = pi;
-        piece p = {.deg_u = patches[pi].deg_u, .deg_v = patches[pi].deg_v,
-                   .local = {0, 1, 0, 1}};
+        piece p = {.deg_u = bp->deg_u, .deg_v = bp->deg_v, .local = {0, 1, 0, 1}};
         if (h->desc.mode == SC_SPLIT_UNIFORM) {
-            p.cp = patches[pi].cp;
+            p.cp = bp->cp; /* uniform() copies what it cuts */
             status = uniform(b, &p, h->desc.divisions, err);
         } else {
             p.cp = sc_alloc(piece_points(&p) * 4, sizeof(double));
-            memcpy(p.cp, patches[pi].cp, piece_points(&p) * 4 * sizeof(double));
+            memcpy(p.cp, bp->cp, piece_points(&p) * 4 * sizeof(double));
             status = refine(b, &p, 0, err);
         }
     }
     range->subpatch_count = h->count - range->first_subpatch;
     range->vertex_count = h->nvertices - range->first_vertex;
     range->index_count = h->nindices - range->first_index;
-    range->patch_count = npatches;
-    h->npatches += npatches;
-    for (int pi = 0; pi < npatches; pi++)
-        sc_bezier_patch_free(&patches[pi]);
-    free(patches);
+    range->patch_count = list->count;
+    h->npatches += list->count;
     return status;
 }
 
-int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
-                   sc_error *err)
+int sc_hulls_build_from(const sc_scene *scene, const sc_patch_list *patches,
+                        const sc_hull_desc *desc, sc_hulls *hulls, sc_error *err)
 {
     static const sc_hull_desc defaults = {0};
     if (!desc)
@@ -457,10 +432,24 @@ int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hu
                                sizeof *hulls->surfaces);
     int status = SC_OK;
     for (int si = 0; si < scene->nsurfaces && status == SC_OK; si++)
-        status = build_surface(&b, scene, si, &hulls->surfaces[si], err);
+        status = build_surface(&b, scene, si, &patches[si], &hulls->surfaces[si], err);
     fclose(b.qhull_log);
     if (status != SC_OK)
         sc_hulls_free(hulls);
+    return status;
+}
+
+int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
+                   sc_error *err)
+{
+    int n = scene->nsurfaces;
+    sc_patch_list *patches = sc_alloc((size_t)(n ? n : 1), sizeof *patches);
+    for (int s = 0; s < n; s++)
+        sc_surface_world_patches(&scene->surfaces[s], s, &patches[s]);
+    int status = sc_hulls_build_from(scene, patches, desc, hulls, err);
+    for (int s = 0; s < n; s++)
+        sc_patch_list_free(&patches[s]);
+    free(patches);
     return status;
 }
 
@@ -479,8 +468,8 @@ static void *splice(void *array, int *count, int first, int old, int fresh, size
     return a;
 }
 
-int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface, int *moved,
-                            sc_error *err)
+int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int surface,
+                                 const sc_patch_list *patches, int *moved, sc_error *err)
 {
     if (surface < 0 || surface >= hulls->nsurfaces || scene->nsurfaces != hulls->nsurfaces)
         return sc_fail(err, NULL, 0, "surface %d is not in the scene the hulls were built for",
@@ -490,7 +479,7 @@ int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface,
     if (builder_open(&b, &one, err) != SC_OK)
         return SC_FAIL;
     sc_hull_range fresh;
-    int status = build_surface(&b, scene, surface, &fresh, err);
+    int status = build_surface(&b, scene, surface, patches, &fresh, err);
     fclose(b.qhull_log);
     if (status != SC_OK) {
         sc_hulls_free(&one);
@@ -538,6 +527,19 @@ int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface,
     old->patch_count = one.npatches;
     sc_hulls_free(&one);
     return SC_OK;
+}
+
+int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface, int *moved,
+                            sc_error *err)
+{
+    if (surface < 0 || surface >= scene->nsurfaces)
+        return sc_fail(err, NULL, 0, "surface %d is not in the scene the hulls were built for",
+                       surface);
+    sc_patch_list patches;
+    sc_surface_world_patches(&scene->surfaces[surface], surface, &patches);
+    int status = sc_hulls_update_surface_from(hulls, scene, surface, &patches, moved, err);
+    sc_patch_list_free(&patches);
+    return status;
 }
 
 void sc_hulls_free(sc_hulls *hulls)

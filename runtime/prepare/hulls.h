@@ -15,7 +15,7 @@
 
 #include <stdint.h>
 
-#include "scene.h"
+#include "nurbs.h"
 #include "splinecast_options.h"
 
 /* Zero means default in every field. */
@@ -41,8 +41,9 @@ typedef struct sc_hull_vertex {
 /* One sub-patch and its hull. */
 typedef struct sc_subpatch {
     int surface;         /* index of the surface in the scene */
-    int patch;           /* index of its Bézier patch within the surface,
-                            u fastest, as sc_surface_to_bezier numbers them */
+    int patch;           /* index of its Bézier patch within the surface's
+                            sc_patch_list (u fastest, as sc_surface_to_bezier
+                            numbers them) */
     double local[4];     /* (u0, u1, v0, v1) in the Bézier patch's [0, 1]² */
     double domain[4];    /* the same rectangle in the surface's parameters */
     int first_vertex, vertex_count;
@@ -80,6 +81,12 @@ typedef struct sc_hulls {
  * control points in one point) get no hull; flat ones a thin slab. */
 int sc_hulls_build(const sc_scene *scene, const sc_hull_desc *desc, sc_hulls *hulls,
                    sc_error *err);
+/* The same from patches[s], the world-space Bézier patches of surface s
+ * (sc_surface_world_patches), which a renderer also packs into its GPU
+ * records: sub-patch .patch p of surface s then comes from the very patch
+ * record p holds. */
+int sc_hulls_build_from(const sc_scene *scene, const sc_patch_list *patches,
+                        const sc_hull_desc *desc, sc_hulls *hulls, sc_error *err);
 void sc_hulls_free(sc_hulls *hulls);
 
 /* After surface s of the scene changed shape: rebuilds its hulls alone, as
@@ -91,6 +98,9 @@ void sc_hulls_free(sc_hulls *hulls);
  * failure the hulls are left as they were. */
 int sc_hulls_update_surface(sc_hulls *hulls, const sc_scene *scene, int surface, int *moved,
                             sc_error *err);
+/* The same from that surface's world-space patches. */
+int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int surface,
+                                 const sc_patch_list *patches, int *moved, sc_error *err);
 
 /* Whether the world-space point p lies inside hull `index` (or on it):
  * hulls that hold the eye are drawn by their back faces. */

@@ -33,6 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bezier.h"
 #include "gpu_layout.h"
 #include "key.h"
 #include "nurbs.h"
@@ -112,26 +113,6 @@ static void piece_points(const packed_piece *pc, int n, double *cp)
         cp[i] = pc->cp[i];
 }
 
-/* De Casteljau at 1/2: the control points of both halves. */
-static void halve(const double *cp, int n, double *left, double *right)
-{
-    double work[3 * MAX_POINTS];
-    memcpy(work, cp, sizeof(double) * 3 * (size_t)(n + 1));
-    for (int c = 0; c < 3; c++) {
-        left[c] = work[c];
-        right[3 * n + c] = work[3 * n + c];
-    }
-    for (int r = 1; r <= n; r++) {
-        for (int i = 0; i <= n - r; i++)
-            for (int c = 0; c < 3; c++)
-                work[3 * i + c] = 0.5 * (work[3 * i + c] + work[3 * (i + 1) + c]);
-        for (int c = 0; c < 3; c++) {
-            left[3 * r + c] = work[c];
-            right[3 * (n - r) + c] = work[3 * (n - r) + c];
-        }
-    }
-}
-
 /* Subdivisions after which a sub-curve straddling a row edge is taken
  * whole: its control polygon is then far narrower than a float step of
  * the bounds' margin. */
@@ -159,7 +140,7 @@ static void part_bounds(const double *cp, int n, double y_lo, double y_hi, int d
         return;
     }
     double left[3 * MAX_POINTS], right[3 * MAX_POINTS];
-    halve(cp, n, left, right);
+    sc_bezier_split(cp, n, 3, 3, 0.5, left, right);
     part_bounds(left, n, y_lo, y_hi, depth + 1, u_min, u_max);
     part_bounds(right, n, y_lo, y_hi, depth + 1, u_min, u_max);
 }

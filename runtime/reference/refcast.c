@@ -32,6 +32,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "bezier.h"
 #include "io.h"
 #include "nurbs.h"
 
@@ -363,32 +364,6 @@ static double sub_box(const double *cp, int npts, int rational, double lo[3], do
     return (hx - lx) + (hy - ly) + (hz - lz);
 }
 
-/* De Casteljau at 0.5 of every line of control points along `dir`
- * (0: u, 1: v) of a (nu × nv) grid. */
-static void split_patch(const double *src, int nu, int nv, int dir, double *left, double *right)
-{
-    int n = dir == 0 ? nu : nv;
-    int lines = dir == 0 ? nv : nu;
-    int step = dir == 0 ? 4 : 4 * nu;
-    int line_step = dir == 0 ? 4 * nu : 4;
-    double work[MAX_PATCH_DEGREE + 1][4];
-    for (int l = 0; l < lines; l++) {
-        const double *s = src + l * line_step;
-        double *lp = left + l * line_step, *rp = right + l * line_step;
-        for (int i = 0; i < n; i++)
-            memcpy(work[i], s + i * step, sizeof work[i]);
-        memcpy(lp, work[0], sizeof work[0]);
-        memcpy(rp + (n - 1) * step, work[n - 1], sizeof work[0]);
-        for (int r = 1; r < n; r++) {
-            for (int i = 0; i < n - r; i++)
-                for (int c = 0; c < 4; c++)
-                    work[i][c] = 0.5 * (work[i][c] + work[i + 1][c]);
-            memcpy(lp + r * step, work[0], sizeof work[0]);
-            memcpy(rp + (n - 1 - r) * step, work[n - 1 - r], sizeof work[0]);
-        }
-    }
-}
-
 /* Lengths of the control polygon along u and along v, summed over all
  * lines (max norm per leg, projected points). Corners alone would not do:
  * a patch closed in one direction (a full circle in one Bézier span) has
@@ -504,7 +479,7 @@ static void intersect_patch(const sc_refcast *rc, const ref_patch *p, const ray_
             double a = d ? node.t0 : node.s0, b = d ? node.t1 : node.s1, mid = 0.5 * (a + b);
             if (!(mid > a && mid < b))
                 continue;
-            split_patch(cp, nu, nv, d, w->split_a, w->split_b);
+            sc_bezier_grid_split(cp, nu - 1, nv - 1, d, 0.5, w->split_a, w->split_b);
             best->subdivisions++;
             size_a = sub_box(w->split_a, npts, p->rational, lo_a, hi_a);
             size_b = sub_box(w->split_b, npts, p->rational, lo_b, hi_b);
