@@ -1,8 +1,8 @@
 {{HEADER}}
 #version 450 core
 
-// Inputs from the vertex stage; locations below 8 are the IR's inputs
-// (gpu_layout.h), 8 and up belong to this skeleton.
+// Inputs from the vertex stage; every location is an entry of the
+// shader/runtime contract (gen/shader_contract.h).
 {{INPUTS}}
 {{VARYING_CENTRE}}
 {{VARYING_BASE_COLOUR}}

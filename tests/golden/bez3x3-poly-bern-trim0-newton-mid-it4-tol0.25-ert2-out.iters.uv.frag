@@ -11,8 +11,8 @@
 // outputs: iterations view, uv view
 #version 450 core
 
-// Inputs from the vertex stage; locations below 8 are the IR's inputs
-// (gpu_layout.h), 8 and up belong to this skeleton.
+// Inputs from the vertex stage; every location is an entry of the
+// shader/runtime contract (gen/shader_contract.h).
 layout(location = 0) flat in vec3 sc_ray_origin;
 layout(location = 1) in vec3 sc_ray_dir;
 layout(location = 3) flat in vec4 sc_domain;
