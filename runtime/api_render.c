@@ -479,6 +479,8 @@ int sc_compare_frames(sc_frame_id reference, sc_frame_id test, sc_comparison *ou
         .pos_max_px = acc.pos_max_px,
         .normal_mean_deg = acc.normal_mean_deg,
         .normal_max_deg = acc.normal_max_deg,
+        .pos_p99_px = acc.pos_p99_px,
+        .normal_p99_deg = acc.normal_p99_deg,
         .has_iters = acc.has_iters,
         .iters_mean = acc.iters_mean,
         .iters_max = acc.iters_max,

@@ -337,9 +337,10 @@ typedef struct sc_comparison {
     double fail_pct;           /* (holes + false hits + off) / reference hits × 100 */
     double pos_median_px, pos_max_px;
     double normal_mean_deg, normal_max_deg;
+    double pos_p99_px, normal_p99_deg;  /* 99th percentiles over both_hit */
     int has_iters;
     double iters_mean, iters_max;
-    char line[256];            /* "accuracy coverage_pct=… fail_pct=… …" */
+    char line[384];            /* "accuracy coverage_pct=… fail_pct=… …" */
 } sc_comparison;
 
 /* Fails when the two frames differ in size or camera. */

@@ -30,6 +30,14 @@ static int same_camera(const sc_camera *a, const sc_camera *b)
     return fabs(a->fovy_deg - b->fovy_deg) <= 1e-9 * a->fovy_deg;
 }
 
+/* Index of the p-th percentile in m sorted values, by nearest rank: the
+ * smallest value that at least p % of the values do not exceed. */
+static size_t percentile_rank(size_t m, int p)
+{
+    size_t rank = (m * (size_t)p + 99) / 100;  /* ceil(m p / 100), at least 1 */
+    return rank ? rank - 1 : 0;
+}
+
 int sc_accuracy_compare(const sc_aov *ref, const sc_aov *test, sc_accuracy *acc, sc_error *err)
 {
     memset(acc, 0, sizeof *acc);
@@ -44,6 +52,7 @@ int sc_accuracy_compare(const sc_aov *ref, const sc_aov *test, sc_accuracy *acc,
     }
     size_t n = (size_t)ref->width * (size_t)ref->height;
     double *pos_err = sc_alloc(n, sizeof(double));
+    double *normal_err = sc_alloc(n, sizeof(double));
     double normal_sum = 0.0, iters_sum = 0.0;
     acc->has_iters = test->has_iters && test->iters;
     for (size_t px = 0; px < n; px++) {
@@ -70,7 +79,7 @@ int sc_accuracy_compare(const sc_aov *ref, const sc_aov *test, sc_accuracy *acc,
         }
         double footprint = sc_camera_footprint(&ref->camera, ref->t[px]);
         double e = footprint > 0.0 ? sqrt(dist2) / footprint : (dist2 > 0.0 ? INFINITY : 0.0);
-        pos_err[acc->both_hit++] = e;
+        pos_err[acc->both_hit] = e;
         if (e > 1.0)
             acc->off++;
         acc->pos_max_px = fmax(acc->pos_max_px, e);
@@ -78,14 +87,19 @@ int sc_accuracy_compare(const sc_aov *ref, const sc_aov *test, sc_accuracy *acc,
         double angle = acos(fmax(-1.0, fmin(1.0, c))) * 180.0 / pi;
         normal_sum += angle;
         acc->normal_max_deg = fmax(acc->normal_max_deg, angle);
+        normal_err[acc->both_hit++] = angle;
     }
     if (acc->both_hit) {
         qsort(pos_err, (size_t)acc->both_hit, sizeof(double), compare_doubles);
         size_t m = (size_t)acc->both_hit;
         acc->pos_median_px = m % 2 ? pos_err[m / 2] : 0.5 * (pos_err[m / 2 - 1] + pos_err[m / 2]);
         acc->normal_mean_deg = normal_sum / (double)acc->both_hit;
+        acc->pos_p99_px = pos_err[percentile_rank(m, 99)];
+        qsort(normal_err, m, sizeof(double), compare_doubles);
+        acc->normal_p99_deg = normal_err[percentile_rank(m, 99)];
     }
     free(pos_err);
+    free(normal_err);
     /* Percentages of the reference's hits (BRIEF). False hits against a
      * reference that hits nothing are infinitely many of its none: the line
      * says `inf` rather than hiding them behind a 0. */
@@ -109,6 +123,10 @@ void sc_accuracy_format(const sc_accuracy *acc, char *buf, size_t size)
                      acc->coverage_pct, acc->fail_pct, acc->pos_median_px, acc->pos_max_px,
                      acc->normal_mean_deg, acc->normal_max_deg);
     if (acc->has_iters && n > 0 && (size_t)n < size)
-        snprintf(buf + n, size - (size_t)n, " iters_mean=%.6g iters_max=%.6g", acc->iters_mean,
-                 acc->iters_max);
+        n += snprintf(buf + n, size - (size_t)n, " iters_mean=%.6g iters_max=%.6g",
+                      acc->iters_mean, acc->iters_max);
+    /* Appended last: scripts read the fields above in their old places. */
+    if (n > 0 && (size_t)n < size)
+        snprintf(buf + n, size - (size_t)n, " pos_p99_px=%.6g normal_p99_deg=%.6g",
+                 acc->pos_p99_px, acc->normal_p99_deg);
 }

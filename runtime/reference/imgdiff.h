@@ -28,6 +28,8 @@ typedef struct sc_accuracy {
     int has_iters;            /* the test image has iteration counts */
     double iters_mean;        /* over the test's hit pixels */
     double iters_max;
+    double pos_p99_px;        /* 99th percentiles (nearest rank) over both_hit */
+    double normal_p99_deg;
 } sc_accuracy;
 
 /* Fails (and fills err) when the two images differ in size or camera:
@@ -35,7 +37,8 @@ typedef struct sc_accuracy {
 int sc_accuracy_compare(const sc_aov *ref, const sc_aov *test, sc_accuracy *acc, sc_error *err);
 
 /* "accuracy coverage_pct=… fail_pct=… pos_median_px=… pos_max_px=…
- * normal_mean_deg=… normal_max_deg=…[ iters_mean=… iters_max=…]" */
+ * normal_mean_deg=… normal_max_deg=…[ iters_mean=… iters_max=…]
+ * pos_p99_px=… normal_p99_deg=…" */
 void sc_accuracy_format(const sc_accuracy *acc, char *buf, size_t size);
 
 #endif
