@@ -191,12 +191,13 @@ static int read_pgm(const char *path, const char *buf, size_t len, double spacin
             v[k] = s * inv;
         }
     } else {
+        int last = line;    /* where the file's last sample was */
         for (size_t k = 0; k <= count; k++) {
             const char *s = pgm_token(p, end, &line);
             if (!s) {
                 if (k == count) break;
                 free(v);
-                return sc_fail(err, path, line,
+                return sc_fail(err, path, last,
                                "PGM has %zu samples, its header says %ld x %ld = %zu", k, w, h,
                                count);
             }
@@ -215,6 +216,7 @@ static int read_pgm(const char *path, const char *buf, size_t len, double spacin
                 return sc_fail(err, path, line, "PGM sample %ld is above maxval %ld", x, maxval);
             }
             v[k] = x * inv;
+            last = line;
         }
     }
     from_rows(v, (int)w, (int)h, spacing, zscale, out);
@@ -238,7 +240,10 @@ static int read_csv(const char *path, char *buf, size_t len, double spacing, dou
     for (char *ln = buf; ln; ln = save) {
         line++;
         save = strchr(ln, '\n');
-        if (save) *save++ = 0;
+        if (save) {
+            *save++ = 0;
+            if (!*save) save = NULL;   /* a final newline ends the last line */
+        }
         char *s = ln;
         while (*s == ' ' || *s == '\t' || *s == '\r') s++;
         if (*s == 0 || *s == '#') continue;
