@@ -33,6 +33,7 @@ INC_BASE      = -Igen/base
 INC_GEN       = -Igen $(INC_BASE)
 INC_MODEL     = -Iruntime/model $(INC_BASE)
 INC_IO        = -Iruntime/io $(INC_MODEL)
+INC_TERRAIN   = -Iruntime/terrain $(INC_MODEL)
 INC_PREPARE   = -Iruntime/prepare $(INC_MODEL) $(INC_GEN)
 INC_REFERENCE = -Iruntime/reference $(INC_IO)
 INC_GL        = -Iruntime/gl -I$(BUILD) -Iruntime/reference -Iruntime/prepare $(INC_IO) $(INC_GEN)
@@ -43,6 +44,7 @@ $(BUILD)/embedded_templates.o:  INC = $(INC_BASE)
 $(BUILD)/embedded_scenes.o:     INC = $(INC_BASE)
 $(BUILD)/runtime/model/%.o:     INC = $(INC_MODEL)
 $(BUILD)/runtime/io/%.o:        INC = $(INC_IO)
+$(BUILD)/runtime/terrain/%.o:   INC = $(INC_TERRAIN)
 $(BUILD)/runtime/prepare/%.o:   INC = $(INC_PREPARE)
 $(BUILD)/runtime/reference/%.o: INC = $(INC_REFERENCE)
 $(BUILD)/runtime/gl/%.o:        INC = $(INC_GL)
@@ -54,7 +56,7 @@ $(BUILD)/examples/%.o:          INC = $(INC_API)
 # error); the others still see everything until they are ported.
 CLI_PUBLIC = main.c cli.c options.c cmd_diff.c
 $(patsubst %.c,$(BUILD)/examples/splinecast/%.o,$(CLI_PUBLIC)): INC = -Iruntime -Igen/base
-$(BUILD)/tests/%.o:             INC = $(INC_API) -Itests -Iexamples/splinecast
+$(BUILD)/tests/%.o:             INC = $(INC_API) -Iruntime/terrain -Itests -Iexamples/splinecast
 
 RUNTIME_SRC  = $(wildcard runtime/*.c runtime/*/*.c)
 GEN_SRC      = $(wildcard gen/*.c gen/base/*.c)

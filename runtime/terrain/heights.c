@@ -1,0 +1,316 @@
+/* heights.c — height grids from PGM and CSV files and from Franke's
+ * function. The readers parse the whole file before they build anything, so
+ * that a refused file leaves *out untouched. */
+#include "heights.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void sc_heights_free(sc_heights *h)
+{
+    free(h->z);
+    memset(h, 0, sizeof *h);
+}
+
+static void heights_alloc(sc_heights *h, int nx, int ny, int pad)
+{
+    memset(h, 0, sizeof *h);
+    h->nx = nx; h->ny = ny; h->pad = pad;
+    h->z = sc_alloc((size_t)(nx + 2 * pad) * (size_t)(ny + 2 * pad), sizeof *h->z);
+}
+
+static double *heights_ref(sc_heights *h, int i, int j)
+{
+    return &h->z[(size_t)(j + h->pad) * (size_t)(h->nx + 2 * h->pad) + (size_t)(i + h->pad)];
+}
+
+/* Franke, "Scattered data interpolation: tests of some methods" (1982). */
+double sc_franke(double x, double y)
+{
+    double a = 9 * x, b = 9 * y;
+    return 0.75 * exp(-((a - 2) * (a - 2) + (b - 2) * (b - 2)) / 4)
+         + 0.75 * exp(-(a + 1) * (a + 1) / 49 - (b + 1) / 10)
+         + 0.5 * exp(-((a - 7) * (a - 7) + (b - 3) * (b - 3)) / 4)
+         - 0.2 * exp(-(a - 4) * (a - 4) - (b - 7) * (b - 7));
+}
+
+void sc_heights_franke(int n, int pad, sc_heights *out)
+{
+    heights_alloc(out, n + 1, n + 1, pad);
+    out->dx = out->dy = 1.0 / n;
+    for (int j = -pad; j <= n + pad; j++)
+        for (int i = -pad; i <= n + pad; i++)
+            *heights_ref(out, i, j) = sc_franke((double)i / n, (double)j / n);
+}
+
+void sc_heights_padded(const sc_heights *in, int pad, sc_heights *out)
+{
+    sc_heights h;
+    heights_alloc(&h, in->nx, in->ny, pad);
+    h.x0 = in->x0; h.y0 = in->y0; h.dx = in->dx; h.dy = in->dy;
+    int nx = in->nx, ny = in->ny;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) *heights_ref(&h, i, j) = sc_heights_at(in, i, j);
+    /* Rows first, then whole columns, so that corners are extrapolated in
+     * both directions; a mirror index past the far side is clamped. */
+    for (int j = 0; j < ny; j++)
+        for (int k = 1; k <= pad; k++) {
+            int kk = k < nx ? k : nx - 1;
+            *heights_ref(&h, -k, j) = 2 * sc_heights_at(&h, 0, j) - sc_heights_at(&h, kk, j);
+            *heights_ref(&h, nx - 1 + k, j) =
+                2 * sc_heights_at(&h, nx - 1, j) - sc_heights_at(&h, nx - 1 - kk, j);
+        }
+    for (int i = -pad; i < nx + pad; i++)
+        for (int k = 1; k <= pad; k++) {
+            int kk = k < ny ? k : ny - 1;
+            *heights_ref(&h, i, -k) = 2 * sc_heights_at(&h, i, 0) - sc_heights_at(&h, i, kk);
+            *heights_ref(&h, i, ny - 1 + k) =
+                2 * sc_heights_at(&h, i, ny - 1) - sc_heights_at(&h, i, ny - 1 - kk);
+        }
+    *out = h;
+}
+
+/* The whole file, NUL-terminated (the terminator is not part of len). */
+static char *slurp(const char *path, size_t *len, sc_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        sc_fail(err, path, 0, "cannot open: %s", strerror(errno));
+        return NULL;
+    }
+    size_t cap = 1 << 16, n = 0;
+    char *buf = sc_alloc(cap, 1);
+    for (;;) {
+        if (n + 1 >= cap) buf = sc_realloc(buf, cap *= 2, 1);
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0) break;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        sc_fail(err, path, 0, "read error");
+        return NULL;
+    }
+    buf[n] = 0;
+    *len = n;
+    return buf;
+}
+
+/* Builds the grid from values read top row first. */
+static void from_rows(const double *v, int w, int hgt, double spacing, double scale,
+                      sc_heights *out)
+{
+    heights_alloc(out, w, hgt, 0);
+    out->dx = out->dy = spacing;
+    for (int r = 0; r < hgt; r++)
+        for (int c = 0; c < w; c++)
+            *heights_ref(out, c, hgt - 1 - r) = v[(size_t)r * w + c] * scale;
+}
+
+/* PGM header and P2 tokens: skips white space and '#' comments, counting
+ * lines; returns the token's start or NULL at the end. */
+static const char *pgm_token(const char *p, const char *end, int *line)
+{
+    while (p < end) {
+        if (*p == '#') {
+            while (p < end && *p != '\n') p++;
+        } else if (isspace((unsigned char)*p)) {
+            if (*p == '\n') (*line)++;
+            p++;
+        } else
+            return p;
+    }
+    return NULL;
+}
+
+/* A decimal unsigned integer token (at most 9 digits); NULL when not. */
+static const char *pgm_uint(const char *p, const char *end, long *v)
+{
+    long x = 0;
+    int digits = 0;
+    while (p < end && isdigit((unsigned char)*p)) {
+        if (++digits > 9) return NULL;
+        x = x * 10 + (*p++ - '0');
+    }
+    if (digits == 0 || (p < end && !isspace((unsigned char)*p) && *p != '#')) return NULL;
+    *v = x;
+    return p;
+}
+
+static int read_pgm(const char *path, const char *buf, size_t len, double spacing,
+                    double zscale, sc_heights *out, sc_error *err)
+{
+    const char *end = buf + len, *p = buf + 2;
+    int line = 1, binary = buf[1] == '5';
+    long hdr[3];
+    const char *names[3] = {"width", "height", "maxval"};
+    for (int t = 0; t < 3; t++) {
+        const char *s = pgm_token(p, end, &line);
+        if (!s) return sc_fail(err, path, line, "PGM header ends before its %s", names[t]);
+        if (!(p = pgm_uint(s, end, &hdr[t])))
+            return sc_fail(err, path, line, "PGM %s is not a number", names[t]);
+    }
+    long w = hdr[0], h = hdr[1], maxval = hdr[2];
+    if (w < 2 || h < 2)
+        return sc_fail(err, path, line, "PGM of %ld x %ld: a terrain needs at least 2 x 2 heights",
+                       w, h);
+    if (maxval < 1 || maxval > 65535)
+        return sc_fail(err, path, line, "PGM maxval %ld is not in 1..65535", maxval);
+    if ((double)w * (double)h > 1e8)
+        return sc_fail(err, path, line, "PGM of %ld x %ld is too large", w, h);
+    size_t count = (size_t)w * (size_t)h;
+    double *v = sc_alloc(count, sizeof *v);
+    double inv = 1.0 / (double)maxval;
+    if (binary) {
+        /* Exactly one white-space byte ends the header. */
+        if (p >= end || !isspace((unsigned char)*p)) {
+            free(v);
+            return sc_fail(err, path, line, "PGM raster missing after the header");
+        }
+        p++;
+        size_t bps = maxval > 255 ? 2 : 1, need = count * bps, have = (size_t)(end - p);
+        if (have != need) {
+            free(v);
+            return sc_fail(err, path, line,
+                           "PGM raster has %zu bytes, the header's %ld x %ld at %zu byte%s per "
+                           "sample needs %zu", have, w, h, bps, bps > 1 ? "s" : "", need);
+        }
+        const unsigned char *u = (const unsigned char *)p;
+        for (size_t k = 0; k < count; k++) {
+            long s = bps == 2 ? (long)u[2 * k] << 8 | u[2 * k + 1] : u[k];
+            if (s > maxval) {
+                free(v);
+                return sc_fail(err, path, line, "PGM sample %zu is %ld, above maxval %ld", k, s,
+                               maxval);
+            }
+            v[k] = s * inv;
+        }
+    } else {
+        int last = line;    /* where the file's last sample was */
+        for (size_t k = 0; k <= count; k++) {
+            const char *s = pgm_token(p, end, &line);
+            if (!s) {
+                if (k == count) break;
+                free(v);
+                return sc_fail(err, path, last,
+                               "PGM has %zu samples, its header says %ld x %ld = %zu", k, w, h,
+                               count);
+            }
+            if (k == count) {
+                free(v);
+                return sc_fail(err, path, line,
+                               "PGM has more samples than its header's %ld x %ld", w, h);
+            }
+            long x;
+            if (!(p = pgm_uint(s, end, &x))) {
+                free(v);
+                return sc_fail(err, path, line, "PGM sample is not a non-negative integer");
+            }
+            if (x > maxval) {
+                free(v);
+                return sc_fail(err, path, line, "PGM sample %ld is above maxval %ld", x, maxval);
+            }
+            v[k] = x * inv;
+            last = line;
+        }
+    }
+    from_rows(v, (int)w, (int)h, spacing, zscale, out);
+    free(v);
+    return SC_OK;
+}
+
+static int read_csv(const char *path, char *buf, size_t len, double spacing, double zscale,
+                    sc_heights *out, sc_error *err)
+{
+    if (memchr(buf, 0, len)) {
+        int line = 1;
+        for (const char *q = buf; *q; q++) line += *q == '\n';
+        return sc_fail(err, path, line, "NUL byte in a CSV file");
+    }
+    size_t cap = 1024, n = 0;
+    double *v = sc_alloc(cap, sizeof *v);
+    long width = -1, rows = 0;
+    int line = 0, first_line = 0;
+    char *save = NULL;
+    for (char *ln = buf; ln; ln = save) {
+        line++;
+        save = strchr(ln, '\n');
+        if (save) {
+            *save++ = 0;
+            if (!*save) save = NULL;   /* a final newline ends the last line */
+        }
+        char *s = ln;
+        while (*s == ' ' || *s == '\t' || *s == '\r') s++;
+        if (*s == 0 || *s == '#') continue;
+        long count = 0;
+        for (;;) {
+            while (*s == ' ' || *s == '\t' || *s == '\r') s++;
+            char *e;
+            errno = 0;
+            double x = strtod(s, &e);
+            char *t = e;
+            while (*t == ' ' || *t == '\t' || *t == '\r') t++;
+            if (e == s || (*t != ',' && *t != 0 && e == t)) {
+                free(v);
+                return sc_fail(err, path, line, "value %ld is not a number", count + 1);
+            }
+            if (!isfinite(x)) {
+                free(v);
+                return sc_fail(err, path, line, "value %ld is not finite", count + 1);
+            }
+            if (n == cap) v = sc_realloc(v, cap *= 2, sizeof *v);
+            v[n++] = x;
+            count++;
+            if (*t == ',') t++;
+            s = t;
+            while (*s == ' ' || *s == '\t' || *s == '\r') s++;
+            if (*s == 0) break;
+        }
+        if (width < 0) {
+            width = count;
+            first_line = line;
+        } else if (count != width) {
+            free(v);
+            return sc_fail(err, path, line, "row has %ld values, the first row (line %d) has %ld",
+                           count, first_line, width);
+        }
+        rows++;
+    }
+    if (rows == 0) {
+        free(v);
+        return sc_fail(err, path, line > 0 ? line : 1, "no heights in the file");
+    }
+    if (width < 2 || rows < 2) {
+        free(v);
+        return sc_fail(err, path, line, "%ld x %ld heights: a terrain needs at least 2 x 2",
+                       width, rows);
+    }
+    from_rows(v, (int)width, (int)rows, spacing, zscale, out);
+    free(v);
+    return SC_OK;
+}
+
+int sc_heights_read(const char *path, double spacing, double zscale, sc_heights *out,
+                    sc_error *err)
+{
+    if (!(spacing > 0) || !isfinite(spacing) || !isfinite(zscale))
+        return sc_fail(err, path, 0, "grid spacing must be positive and finite, height scale "
+                       "finite");
+    size_t len;
+    char *buf = slurp(path, &len, err);
+    if (!buf) return SC_FAIL;
+    int rc;
+    if (len >= 2 && buf[0] == 'P' && (buf[1] == '2' || buf[1] == '5'))
+        rc = read_pgm(path, buf, len, spacing, zscale, out, err);
+    else if (len == 0)
+        rc = sc_fail(err, path, 1, "empty file: no heights");
+    else
+        rc = read_csv(path, buf, len, spacing, zscale, out, err);
+    free(buf);
+    return rc;
+}
