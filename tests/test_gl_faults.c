@@ -14,6 +14,7 @@
 #include "io.h"
 #include "programs.h"
 #include "scene_keys.h"
+#include "splinecast.h"
 
 static sc_gl_context *fault_context(const char **why)
 {
@@ -116,4 +117,71 @@ TEST(gl_fault_program_rejected)
     CHECK_INT(sc_program_count(cache), 1);
     scg_generated_free(&gen);
     sc_program_cache_destroy(cache);
+}
+
+/* A scene over the GPU memory budget: refused before anything is sent,
+ * naming the bytes it needs, the renderer left unmade and the context
+ * clean; at exactly its size, and with no budget, it is made and draws the
+ * same frame as a renderer that never met a budget. */
+TEST(gl_fault_memory_budget)
+{
+    sc_error err = {0};
+    sc_context_id ctx;
+    sc_scene_id teapot;
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    CHECK_INT(sc_make_scene(NULL, &teapot, &err), SC_OK);
+    sc_renderer_id free_r, r;
+    CHECK_INT(sc_make_renderer(ctx, teapot, NULL, &free_r, &err), SC_OK);
+    sc_renderer_info info;
+    CHECK_INT(sc_query_renderer_info(free_r, &info, &err), SC_OK);
+    CHECK(info.gpu_bytes > 1000);
+
+    sc_renderer_desc desc = {.gpu_memory_budget = info.gpu_bytes - 1};
+    r.id = 7;
+    CHECK_INT(sc_make_renderer(ctx, teapot, &desc, &r, &err), SC_FAIL);
+    CHECK_INT(r.id, 0);
+    char expect[160];
+    snprintf(expect, sizeof expect,
+             "out of GPU memory: the scene needs %zu bytes of GPU data "
+             "(the GPU memory budget is %zu bytes)", info.gpu_bytes, info.gpu_bytes - 1);
+    CHECK_STR(err.message, expect);   /* the words of gl_fault_out_of_memory's */
+    desc.gpu_memory_budget = info.gpu_bytes;
+    CHECK_INT(sc_make_renderer(ctx, teapot, &desc, &r, &err), SC_OK);
+    sc_camera_desc cam = {.width = 48, .height = 40};
+    sc_frame_id a, b;
+    CHECK_INT(sc_render(free_r, &cam, &a, &err), SC_OK);
+    CHECK_INT(sc_render(r, &cam, &b, &err), SC_OK);
+    sc_frame_info fa, fb;
+    CHECK_INT(sc_query_frame_info(a, &fa, &err), SC_OK);
+    CHECK_INT(sc_query_frame_info(b, &fb, &err), SC_OK);
+    CHECK(memcmp(fa.rgba, fb.rgba, 4 * 48 * 40) == 0);
+    CHECK(memcmp(fa.t, fb.t, sizeof(float) * 48 * 40) == 0);
+    sc_shutdown();
+}
+
+/* A real GL_OUT_OF_MEMORY (Mesa refuses a buffer over 4 GiB without
+ * allocating it) read by the check every upload goes through: the scene's
+ * size in the message, the error queue drained. */
+TEST(gl_fault_out_of_memory)
+{
+    const char *why;
+    sc_gl_context *ctx = fault_context(&why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const sc_gl *gl = sc_gl_context_gl(ctx);
+    GLuint buffer;
+    gl->CreateBuffers(1, &buffer);
+    gl->NamedBufferStorage(buffer, (GLsizeiptr)1 << 33, NULL, 0);
+    sc_error err = {0};
+    int status = sc_gl_check_upload(gl, "uploading the patch data", 123456, &err);
+    GLenum after = gl->GetError();
+    gl->DeleteBuffers(1, &buffer);
+    if (status == SC_OK)
+        SKIP("this driver gave an 8 GiB buffer: no GL_OUT_OF_MEMORY to test");
+    CHECK_STR(err.message, "out of GPU memory: the scene needs 123456 bytes of GPU data "
+                           "(GL_OUT_OF_MEMORY after uploading the patch data)");
+    CHECK_INT(after, GL_NO_ERROR);
 }

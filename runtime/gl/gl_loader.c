@@ -2,6 +2,7 @@
  * GetProcAddress and checks the context's version (gl_loader.h). */
 #include "gl_loader.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -64,6 +65,31 @@ const char *sc_gl_error_name(GLenum code)
     }
 }
 
+int sc_gl_fail_memory(sc_error *err, size_t needed, const char *cause)
+{
+    return sc_fail(err, NULL, 0, "out of GPU memory: the scene needs %zu bytes of GPU data (%s)",
+                   needed, cause);
+}
+
+/* glGetError, drained so that the next check reports its own error; an
+ * error found is logged and returned in err, GL_OUT_OF_MEMORY with the
+ * scene's size when `needed` is known. */
+static int check_error(const sc_gl *gl, const char *what, size_t needed, sc_error *err)
+{
+    GLenum code = gl->GetError();
+    if (code == GL_NO_ERROR)
+        return SC_OK;
+    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; i++)
+        ;
+    sc_log(SC_LOG_ERROR, "OpenGL error %s after %s", sc_gl_error_name(code), what);
+    if (code == GL_OUT_OF_MEMORY && needed) {
+        char cause[160];
+        snprintf(cause, sizeof cause, "GL_OUT_OF_MEMORY after %s", what);
+        return sc_gl_fail_memory(err, needed, cause);
+    }
+    return sc_fail(err, NULL, 0, "OpenGL error %s after %s", sc_gl_error_name(code), what);
+}
+
 int sc_gl_check(const sc_gl *gl, const char *what, sc_error *err)
 {
 #ifdef NDEBUG
@@ -72,13 +98,11 @@ int sc_gl_check(const sc_gl *gl, const char *what, sc_error *err)
     (void)err;
     return SC_OK;
 #else
-    GLenum code = gl->GetError();
-    if (code == GL_NO_ERROR)
-        return SC_OK;
-    /* Drain the queue so that the next check reports its own error. */
-    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; i++)
-        ;
-    sc_log(SC_LOG_ERROR, "OpenGL error %s after %s", sc_gl_error_name(code), what);
-    return sc_fail(err, NULL, 0, "OpenGL error %s after %s", sc_gl_error_name(code), what);
+    return check_error(gl, what, 0, err);
 #endif
+}
+
+int sc_gl_check_upload(const sc_gl *gl, const char *what, size_t needed, sc_error *err)
+{
+    return check_error(gl, what, needed, err);
 }

@@ -35,6 +35,19 @@ int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
  * without asking the driver, which would stall it. */
 int sc_gl_check(const sc_gl *gl, const char *what, sc_error *err);
 
+/* After an upload that allocates GPU memory: reads glGetError in every
+ * build (an upload that ran out of memory must not pass silently in a
+ * release build, and one query per large upload costs nothing next to
+ * it). GL_OUT_OF_MEMORY fails with sc_gl_fail_memory's message naming
+ * `needed`, the bytes of GPU data the whole scene needs; any other error
+ * as sc_gl_check. */
+int sc_gl_check_upload(const sc_gl *gl, const char *what, size_t needed, sc_error *err);
+
+/* "out of GPU memory: the scene needs N bytes of GPU data (CAUSE)": the one
+ * message for a scene the GPU could not hold, whether the driver said so
+ * (GL_OUT_OF_MEMORY) or a budget refused it before anything was sent. */
+int sc_gl_fail_memory(sc_error *err, size_t needed, const char *cause);
+
 /* Name of a GL error code ("GL_INVALID_OPERATION"). */
 const char *sc_gl_error_name(GLenum code);
 
