@@ -185,3 +185,61 @@ TEST(gl_fault_out_of_memory)
                            "(GL_OUT_OF_MEMORY after uploading the patch data)");
     CHECK_INT(after, GL_NO_ERROR);
 }
+
+/* 1 when the file exists. */
+static int exists(const char *dir, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return access(path, F_OK) == 0;
+}
+
+/* A driver capped below 4.5 (Mesa's MESA_GL_VERSION_OVERRIDE, in a child
+ * `splinecast render`): the error names the version required and the one
+ * found, for each backend tried, and nothing is written. */
+TEST(gl_fault_version_below_45)
+{
+    char cmd[2048], *out = NULL, *err_text = NULL;
+    const char *dir = test_tmpdir();
+    snprintf(cmd, sizeof cmd,
+             "MESA_GL_VERSION_OVERRIDE=3.3 %s render teapot -o %s/capped.png --size 8x8", test_cli,
+             dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 1);
+    CHECK_CONTAINS(err_text, "EGL: OpenGL 4.5 core is required, the driver offers 3.3 (\"3.3");
+    CHECK_CONTAINS(err_text,
+                   "; OSMesa: OpenGL 4.5 core is required, the driver offers 3.3 (\"3.3");
+    CHECK(!exists(dir, "capped.png") && !exists(dir, "capped.aov"));
+    free(out);
+    free(err_text);
+
+    /* No core profile at all (3.0): the version of any context the driver
+     * makes. */
+    snprintf(cmd, sizeof cmd,
+             "MESA_GL_VERSION_OVERRIDE=3.0 %s render teapot -o %s/capped.png --size 8x8 "
+             "--backend osmesa", test_cli, dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 1);
+    CHECK_CONTAINS(err_text, "OSMesa: OpenGL 4.5 core is required, the driver offers 3.0 (\"3.0");
+    CHECK(!exists(dir, "capped.png"));
+    free(out);
+    free(err_text);
+}
+
+/* No EGL (libglvnd finds no vendor library): EGL asked for, OSMesa draws
+ * after a warning that says what EGL lacks (not "EGL_SUCCESS"). */
+TEST(gl_fault_no_egl_falls_back)
+{
+    char cmd[2048], *out = NULL, *err_text = NULL;
+    const char *dir = test_tmpdir();
+    snprintf(cmd, sizeof cmd,
+             "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent %s render teapot -o %s/novendor.png "
+             "--size 8x8 --frames 1 --backend egl", test_cli, dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 0);
+    CHECK_CONTAINS(err_text, "warning: EGL: ");
+    CHECK_CONTAINS(err_text, "; falling back to OSMesa");
+    CHECK(strstr(err_text, "EGL_SUCCESS") == NULL);
+    CHECK_CONTAINS(err_text, "render: osmesa");
+    CHECK_CONTAINS(out, "stats programs=1 ");
+    CHECK(exists(dir, "novendor.png") && exists(dir, "novendor.aov"));
+    free(out);
+    free(err_text);
+}

@@ -6,6 +6,29 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* "4.6 (Core Profile) Mesa 22.3.6", "OpenGL ES 3.2 Mesa …": the first
+ * number pair. */
+static void parse_version(const char *version, int *major, int *minor)
+{
+    const char *digits = version;
+    while (*digits && (*digits < '0' || *digits > '9'))
+        digits++;
+    char *end;
+    *major = (int)strtol(digits, &end, 10);
+    *minor = *end == '.' ? (int)strtol(end + 1, NULL, 10) : 0;
+}
+
+int sc_gl_fail_version(sc_error *err, const char *backend, const char *version, int major,
+                       int minor)
+{
+    int have_major, have_minor;
+    parse_version(version, &have_major, &have_minor);
+    return sc_fail(err, NULL, 0,
+                   "%s%sOpenGL %d.%d core is required, the driver offers %d.%d (\"%s\")",
+                   backend ? backend : "", backend ? ": " : "", major, minor, have_major,
+                   have_minor, version);
+}
+
 int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
                int minor, sc_error *err)
 {
@@ -18,16 +41,10 @@ int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
     const char *version = (const char *)gl->GetString(GL_VERSION);
     if (!version)
         return sc_fail(err, NULL, 0, "OpenGL: glGetString(GL_VERSION) failed (no current context?)");
-    const char *digits = version;
-    while (*digits && (*digits < '0' || *digits > '9'))
-        digits++;  /* "OpenGL ES 3.2 Mesa" style prefixes */
-    char *end;
-    int have_major = (int)strtol(digits, &end, 10);
-    int have_minor = *end == '.' ? (int)strtol(end + 1, NULL, 10) : 0;
+    int have_major, have_minor;
+    parse_version(version, &have_major, &have_minor);
     if (have_major * 100 + have_minor < major * 100 + minor)
-        return sc_fail(err, NULL, 0,
-                       "OpenGL %d.%d core is required, the context has \"%s\"", major,
-                       minor, version);
+        return sc_gl_fail_version(err, NULL, version, major, minor);
     gl->major = have_major;
     gl->minor = have_minor;
 

@@ -30,6 +30,13 @@ typedef sc_gl_proc (*sc_gl_get_proc_fn)(const char *name, void *user);
 int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
                int minor, sc_error *err);
 
+/* "BACKEND: OpenGL 4.5 core is required, the driver offers 3.3 ("3.3 (Core
+ * Profile) Mesa …")": the version found (the GL_VERSION string) and the
+ * one required, from whichever step found the driver too old. backend may
+ * be NULL. */
+int sc_gl_fail_version(sc_error *err, const char *backend, const char *version, int major,
+                       int minor);
+
 /* In builds without NDEBUG: reads glGetError and, when it is set, logs it
  * with `what` and returns SC_FAIL (filling err). Release builds return SC_OK
  * without asking the driver, which would stall it. */
