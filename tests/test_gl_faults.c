@@ -243,3 +243,71 @@ TEST(gl_fault_no_egl_falls_back)
     free(out);
     free(err_text);
 }
+
+/* 1 when the two files hold the same bytes. */
+static int same_bytes(const char *dir, const char *a, const char *b)
+{
+    char pa[1024], pb[1024];
+    snprintf(pa, sizeof pa, "%s/%s", dir, a);
+    snprintf(pb, sizeof pb, "%s/%s", dir, b);
+    char *da = NULL, *db = NULL;
+    size_t na = 0, nb = 0;
+    sc_error err = {0};
+    int same = sc_read_file(pa, &da, &na, &err) == SC_OK &&
+               sc_read_file(pb, &db, &nb, &err) == SC_OK && na == nb && na > 0 &&
+               memcmp(da, db, na) == 0;
+    if (!same)
+        fprintf(stderr, "  %s and %s differ (%zu and %zu bytes) %s\n", a, b, na, nb,
+                err.message);
+    free(da);
+    free(db);
+    return same;
+}
+
+/* The same input and thread count (LP_NUM_THREADS, fixed by `make test`)
+ * give the same bits: two runs of `splinecast render teapot` write the
+ * same PNG and AOV bytes, and two frames of one renderer the same image
+ * and AOVs, iterations included. */
+TEST(gl_fault_same_bits)
+{
+    char cmd[2048];
+    const char *dir = test_tmpdir();
+    for (int run = 0; run < 2; run++) {
+        snprintf(cmd, sizeof cmd, "%s render teapot -o %s/same%d.png --size 96x80 --frames 1",
+                 test_cli, dir, run);
+        CHECK_INT(test_run(cmd, NULL, NULL), 0);
+    }
+    CHECK(same_bytes(dir, "same0.png", "same1.png"));
+    CHECK(same_bytes(dir, "same0.aov", "same1.aov"));
+
+    sc_error err = {0};
+    sc_context_id ctx;
+    sc_scene_id teapot;
+    sc_renderer_id r;
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    CHECK_INT(sc_make_scene(NULL, &teapot, &err), SC_OK);
+    CHECK_INT(sc_make_renderer(ctx, teapot, NULL, &r, &err), SC_OK);
+    sc_camera_desc cam = {.width = 96, .height = 80};
+    sc_frame_id frames[2];
+    sc_frame_info f[2];
+    for (int i = 0; i < 2; i++) {
+        CHECK_INT(sc_render(r, &cam, &frames[i], &err), SC_OK);
+        CHECK_INT(sc_query_frame_info(frames[i], &f[i], &err), SC_OK);
+    }
+    size_t n = 96 * 80;
+    CHECK(memcmp(f[0].rgba, f[1].rgba, 4 * n) == 0);
+    CHECK(memcmp(f[0].surface, f[1].surface, n * sizeof(int32_t)) == 0);
+    CHECK(memcmp(f[0].uv, f[1].uv, 2 * n * sizeof(float)) == 0);
+    CHECK(memcmp(f[0].t, f[1].t, n * sizeof(float)) == 0);
+    CHECK(memcmp(f[0].point, f[1].point, 3 * n * sizeof(float)) == 0);
+    CHECK(memcmp(f[0].normal, f[1].normal, 3 * n * sizeof(float)) == 0);
+    CHECK(memcmp(f[0].iters, f[1].iters, n * sizeof(float)) == 0);
+    long hits = 0;
+    for (size_t p = 0; p < n; p++)
+        hits += f[0].surface[p] >= 0;
+    CHECK(hits > (long)n / 10);
+    sc_shutdown();
+}
