@@ -87,26 +87,40 @@ static void source_line(const char *text, int line, char *buf, size_t size)
     buf[len] = 0;
 }
 
-/* glslang logs "ERROR: 0:LINE: message"; the first error is the one to show,
- * later ones usually follow from it. */
+/* Logs name a line as "ERROR: 0:LINE: message" (glslang, AMD),
+ * "0:LINE(COL): error: message" (Mesa) or "0(LINE) : error C…: message"
+ * (NVIDIA). The first line that reports an error is the one to show (a
+ * warning may come before it); later errors usually follow from it. */
 static int first_error(const char *log, int *line, char *msg, size_t size)
 {
-    const char *e = log ? strstr(log, "ERROR: ") : NULL;
     *line = 0;
+    const char *e = NULL;
+    for (const char *l = log; l && *l && !e; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+        char text[512];
+        snprintf(text, sizeof text, "%.*s", (int)strcspn(l, "\n"), l);
+        if (strstr(text, "ERROR") || strstr(text, "error"))
+            e = l;
+    }
     if (!e) {
         snprintf(msg, size, "%s", log && *log ? log : "rejected without a message");
         msg[strcspn(msg, "\n")] = 0;
         return 0;
     }
-    e += strlen("ERROR: ");
+    if (!strncmp(e, "ERROR: ", 7))
+        e += 7;
     int string_no = 0, consumed = 0;
-    if (sscanf(e, "%d:%d:%n", &string_no, line, &consumed) == 2 && consumed > 0) {
+    if (sscanf(e, "%d:%d%n", &string_no, line, &consumed) == 2 &&
+        (e[consumed] == ':' || e[consumed] == '(')) {
         e += consumed;
-        while (*e == ' ')
-            e++;
+        if (*e == '(')
+            e += strcspn(e, ")\n") + (e[strcspn(e, ")\n")] == ')');
+    } else if (sscanf(e, "%d(%d)%n", &string_no, line, &consumed) == 2 && consumed > 0) {
+        e += consumed;
     } else {
         *line = 0;
     }
+    while (*e == ' ' || *e == ':')
+        e++;
     size_t len = strcspn(e, "\n");
     if (len >= size)
         len = size - 1;
@@ -115,8 +129,8 @@ static int first_error(const char *log, int *line, char *msg, size_t size)
     return *line;
 }
 
-static int fail_with_log(sc_error *err, const char *key, const char *what,
-                         const char *log, const char *glsl)
+int scg_fail_shader_log(sc_error *err, const char *key, const char *what, const char *log,
+                        const char *glsl)
 {
     char msg[300], code[160];
     int line = 0;
@@ -158,8 +172,8 @@ static glslang_shader_t *parse_stage(scg_stage stage, const char *glsl, const ch
         return NULL;
     }
     if (!glslang_shader_preprocess(shader, &in) || !glslang_shader_parse(shader, &in)) {
-        fail_with_log(err, key, scg_stage_extension(stage), glslang_shader_get_info_log(shader),
-                      glsl);
+        scg_fail_shader_log(err, key, scg_stage_extension(stage),
+                            glslang_shader_get_info_log(shader), glsl);
         glslang_shader_delete(shader);
         return NULL;
     }
@@ -203,7 +217,8 @@ static int link_and_count(glslang_shader_t *vertex, glslang_shader_t *fragment, 
         glslang_program_add_shader(program, fragment);
     int messages = GLSLANG_MSG_DEFAULT_BIT | GLSLANG_MSG_SPV_RULES_BIT;
     if (!glslang_program_link(program, messages))
-        status = fail_with_log(err, key, "link", glslang_program_get_info_log(program), NULL);
+        status = scg_fail_shader_log(err, key, "link", glslang_program_get_info_log(program),
+                                     NULL);
     size_t consumed = 0;
     if (status == SC_OK && vertex && vertex_result)
         status = count_spirv(program, SCG_STAGE_VERTEX, key, &consumed, vertex_result, err);

@@ -43,6 +43,13 @@ int scg_glslang_check_program(const char *vertex_glsl, const char *fragment_glsl
                               const char *key, scg_glslang_result *vertex_result,
                               scg_glslang_result *fragment_result, sc_error *err);
 
+/* Fails with the first error of a compiler's log (glslang's or a GL
+ * driver's: glslang, Mesa and NVIDIA spellings of the line): err->message
+ * "WHAT line N: message | the GLSL line of glsl" (or "WHAT: message" when
+ * the log names no line), err->key the key, err->line N. */
+int scg_fail_shader_log(sc_error *err, const char *key, const char *what, const char *log,
+                        const char *glsl);
+
 /* Instructions in a SPIR-V word stream: after the 5-word header, each
  * instruction's first word holds its word count in the high 16 bits.
  * Returns -1 for a malformed stream (bad magic, zero or overlong count). */

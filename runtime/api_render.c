@@ -169,6 +169,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->ert = d->termination;
     r->order = d->order;
     r->batch_hulls = d->batch_hulls;
+    r->gpu_memory_budget = d->gpu_memory_budget;
     return SC_OK;
 }
 

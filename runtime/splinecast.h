@@ -249,6 +249,13 @@ typedef struct sc_renderer_desc {
     int batch_hulls;           /* hulls per batch in the manual termination
                                   modes (a batch sees the hits of those
                                   before it) and per hybrid bucket (32) */
+    size_t gpu_memory_budget;  /* most bytes of GPU data (patch data, hulls,
+                                  colours: sc_renderer_info.gpu_bytes) the
+                                  renderer may upload; a scene that needs
+                                  more is refused before anything is sent,
+                                  with the message a real GL_OUT_OF_MEMORY
+                                  gives ("out of GPU memory: the scene needs
+                                  N bytes of GPU data (…)"). 0: no budget */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data

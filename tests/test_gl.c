@@ -866,30 +866,3 @@ TEST(gl_render_cli)
     CHECK_CONTAINS(out, "usage: splinecast render");
     free(out);
 }
-
-/* Why no context could be made, in the final error: with a driver capped
- * below 4.5, the default backend's message gives EGL's reason and
- * OSMesa's; an EGL with no display at all (no vendor library) says so,
- * not "(EGL_SUCCESS)". */
-TEST(gl_context_failure_messages)
-{
-    char cmd[2048], *out = NULL, *err_text = NULL;
-    const char *dir = test_tmpdir();
-    snprintf(cmd, sizeof cmd,
-             "MESA_GL_VERSION_OVERRIDE=3.3 %s render teapot -o %s/capped.png --size 8x8", test_cli,
-             dir);
-    CHECK_INT(test_run(cmd, &out, &err_text), 1);
-    CHECK_CONTAINS(err_text, "EGL: no OpenGL 4.5 core context");
-    CHECK_CONTAINS(err_text, "; OSMesa: no OpenGL 4.5 core context");
-    free(out);
-    free(err_text);
-
-    snprintf(cmd, sizeof cmd,
-             "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent %s render teapot -o %s/novendor.png "
-             "--size 8x8 --frames 1 --backend egl", test_cli, dir);
-    test_run(cmd, &out, &err_text);
-    CHECK_CONTAINS(err_text, "EGL: ");
-    CHECK(strstr(err_text, "EGL_SUCCESS") == NULL);
-    free(out);
-    free(err_text);
-}

@@ -149,6 +149,32 @@ static EGLDisplay egl_open_display(const char **platform, sc_error *err)
     return d;
 }
 
+/* When the driver refused 4.5 core: the GL_VERSION of the best it offers
+ * ("" when it offers nothing), from a context of the lowest core version
+ * (3.2, which Mesa answers with its highest) or else of any version, made
+ * current only to ask. */
+static void egl_probe_version(EGLDisplay display, EGLConfig config, char *version,
+                              size_t size)
+{
+    static const EGLint core[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    static const EGLint any[] = {EGL_NONE};
+    version[0] = 0;
+    EGLContext probe = eglCreateContext(display, config, EGL_NO_CONTEXT, core);
+    if (probe == EGL_NO_CONTEXT)
+        probe = eglCreateContext(display, config, EGL_NO_CONTEXT, any);
+    if (probe == EGL_NO_CONTEXT)
+        return;
+    if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, probe)) {
+        PFNGLGETSTRINGPROC get_string = (PFNGLGETSTRINGPROC)eglGetProcAddress("glGetString");
+        const char *v = get_string ? (const char *)get_string(GL_VERSION) : NULL;
+        snprintf(version, size, "%s", v ? v : "");
+        eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+    eglDestroyContext(display, probe);
+}
+
 static int egl_create(sc_gl_context *ctx, int debug, sc_error *err)
 {
     const char *platform = "egl";
@@ -174,10 +200,17 @@ static int egl_create(sc_gl_context *ctx, int debug, sc_error *err)
                               EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
                               EGL_NONE};
     ctx->egl_context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
-    if (ctx->egl_context == EGL_NO_CONTEXT)
+    if (ctx->egl_context == EGL_NO_CONTEXT) {
+        const char *why = egl_error_name(eglGetError());
+        char version[200];
+        egl_probe_version(display, config, version, sizeof version);
+        if (version[0])
+            return sc_gl_fail_version(err, "EGL", version, GL_MAJOR_REQUIRED,
+                                      GL_MINOR_REQUIRED);
         return sc_fail(err, NULL, 0,
                        "EGL: no OpenGL %d.%d core context (%s): the driver is too old",
-                       GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED, egl_error_name(eglGetError()));
+                       GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED, why);
+    }
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl_context))
         return sc_fail(err, NULL, 0, "EGL: eglMakeCurrent failed (%s)",
                        egl_error_name(eglGetError()));
@@ -211,6 +244,42 @@ static sc_gl_proc osmesa_get_proc(const char *name, void *user)
     return ((sc_gl_context *)user)->osmesa_get_proc(name);
 }
 
+/* The OSMesa attributes of a core context of version major.minor. */
+static void osmesa_attribs(int attribs[15], int major, int minor)
+{
+    const int list[15] = {OSMESA_FORMAT_, GL_RGBA,
+                          OSMESA_DEPTH_BITS_, 0,
+                          OSMESA_STENCIL_BITS_, 0,
+                          OSMESA_ACCUM_BITS_, 0,
+                          OSMESA_PROFILE_, OSMESA_CORE_PROFILE_,
+                          OSMESA_CONTEXT_MAJOR_VERSION_, major,
+                          OSMESA_CONTEXT_MINOR_VERSION_, minor,
+                          0};
+    memcpy(attribs, list, sizeof list);
+}
+
+/* As egl_probe_version: the GL_VERSION of OSMesa's best core context, or
+ * else of any context; "" when it has none. */
+static void osmesa_probe_version(sc_gl_context *ctx, osmesa_create_fn create, char *version,
+                                 size_t size)
+{
+    int attribs[15];
+    osmesa_attribs(attribs, 3, 2);
+    static const int any[] = {OSMESA_FORMAT_, GL_RGBA, 0};
+    version[0] = 0;
+    osmesa_context_t probe = create(attribs, NULL);
+    if (!probe)
+        probe = create(any, NULL);
+    if (!probe)
+        return;
+    if (ctx->osmesa_make_current(probe, ctx->osmesa_dummy, GL_UNSIGNED_BYTE, 1, 1)) {
+        PFNGLGETSTRINGPROC get_string = (PFNGLGETSTRINGPROC)ctx->osmesa_get_proc("glGetString");
+        const char *v = get_string ? (const char *)get_string(GL_VERSION) : NULL;
+        snprintf(version, size, "%s", v ? v : "");
+    }
+    ctx->osmesa_destroy(probe);
+}
+
 static int osmesa_create(sc_gl_context *ctx, sc_error *err)
 {
     static const char *const names[] = {"libOSMesa.so.8", "libOSMesa.so"};
@@ -234,18 +303,18 @@ static int osmesa_create(sc_gl_context *ctx, sc_error *err)
     ctx->osmesa_destroy = destroy.fn;
     ctx->osmesa_make_current = make_current.fn;
     ctx->osmesa_get_proc = get_proc.fn;
-    const int attribs[] = {OSMESA_FORMAT_, GL_RGBA,
-                           OSMESA_DEPTH_BITS_, 0,
-                           OSMESA_STENCIL_BITS_, 0,
-                           OSMESA_ACCUM_BITS_, 0,
-                           OSMESA_PROFILE_, OSMESA_CORE_PROFILE_,
-                           OSMESA_CONTEXT_MAJOR_VERSION_, GL_MAJOR_REQUIRED,
-                           OSMESA_CONTEXT_MINOR_VERSION_, GL_MINOR_REQUIRED,
-                           0};
+    int attribs[15];
+    osmesa_attribs(attribs, GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED);
     ctx->osmesa_context = create.fn(attribs, NULL);
-    if (!ctx->osmesa_context)
+    if (!ctx->osmesa_context) {
+        char version[200];
+        osmesa_probe_version(ctx, create.fn, version, sizeof version);
+        if (version[0])
+            return sc_gl_fail_version(err, "OSMesa", version, GL_MAJOR_REQUIRED,
+                                      GL_MINOR_REQUIRED);
         return sc_fail(err, NULL, 0, "OSMesa: no OpenGL %d.%d core context",
                        GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED);
+    }
     if (!ctx->osmesa_make_current(ctx->osmesa_context, ctx->osmesa_dummy,
                                   GL_UNSIGNED_BYTE, 1, 1))
         return sc_fail(err, NULL, 0, "OSMesa: OSMesaMakeCurrent failed");

@@ -162,9 +162,22 @@ static const GLenum texture_formats[SCG_TEXTURE_COUNT] = {
     [SCG_TEX_RECORDS] = GL_RGBA32F,
 };
 
-int sc_gpu_data_upload_from(const sc_gl *gl, const sc_scene *scene,
-                            const sc_patch_list *patches, const scg_key *keys,
-                            sc_gpu_data *data, sc_error *err)
+/* Bytes of texture t's buffer: never empty (scenes drawn by bez programs
+ * alone have no knots), one zero texel then. */
+static size_t texture_bytes(const sc_gpu_data *data, int t)
+{
+    size_t texels[SCG_TEXTURE_COUNT] = {
+        [SCG_TEX_POINTS] = (size_t)data->npoints * 16,
+        [SCG_TEX_KNOTS] = (size_t)data->nknots * 4,
+        [SCG_TEX_RECORDS] = ((size_t)data->nrecords * SCG_RECORD_TEXELS +
+                             (size_t)data->ntrim_texels) * 16,
+    };
+    return texels[t] ? texels[t] : 16;
+}
+
+int sc_gpu_data_build_from(const sc_gl *gl, const sc_scene *scene,
+                           const sc_patch_list *patches, const scg_key *keys,
+                           sc_gpu_data *data, sc_error *err)
 {
     memset(data, 0, sizeof *data);
     arrays a = {0};
@@ -203,28 +216,44 @@ int sc_gpu_data_upload_from(const sc_gl *gl, const sc_scene *scene,
                        "scene too large for the GPU layout: %d texels in one texture "
                        "(limit %d)", most, max_texels < (1 << 24) ? max_texels : (1 << 24));
     }
-    const void *contents[SCG_TEXTURE_COUNT] = {a.points, a.knots, a.records};
-    const size_t sizes[SCG_TEXTURE_COUNT] = {(size_t)a.npoints * 16, (size_t)a.nknots * 4,
-                                             (size_t)a.nrecords * 16};
+    /* The arrays move into the staged data; the trims were copied. */
+    data->staged[SCG_TEX_POINTS] = a.points;
+    data->staged[SCG_TEX_KNOTS] = a.knots;
+    data->staged[SCG_TEX_RECORDS] = a.records;
+    free(a.trims);
+    for (int t = 0; t < SCG_TEXTURE_COUNT; t++)
+        data->bytes += texture_bytes(data, t);
+    return SC_OK;
+}
+
+int sc_gpu_data_send(const sc_gl *gl, sc_gpu_data *data, size_t needed, sc_error *err)
+{
     gl->CreateBuffers(SCG_TEXTURE_COUNT, data->buffers);
     gl->CreateTextures(GL_TEXTURE_BUFFER, SCG_TEXTURE_COUNT, data->textures);
     for (int t = 0; t < SCG_TEXTURE_COUNT; t++) {
-        /* A buffer must not be empty (scenes drawn by bez programs alone
-         * have no knots): one zero texel then. */
         static const float zero[4];
-        size_t size = sizes[t] ? sizes[t] : 16;
-        gl->NamedBufferStorage(data->buffers[t], (GLsizeiptr)size,
-                               sizes[t] ? contents[t] : zero, GL_DYNAMIC_STORAGE_BIT);
+        gl->NamedBufferStorage(data->buffers[t], (GLsizeiptr)texture_bytes(data, t),
+                               data->staged[t] ? (const void *)data->staged[t] : zero,
+                               GL_DYNAMIC_STORAGE_BIT);
         gl->TextureBuffer(data->textures[t], texture_formats[t], data->buffers[t]);
-        data->bytes += size;
+        free(data->staged[t]);
+        data->staged[t] = NULL;
     }
     data->bytes_uploaded = data->bytes;
-    arrays_free(&a);
-    if (sc_gl_check(gl, "uploading the patch data", err) != SC_OK) {
+    if (sc_gl_check_upload(gl, "uploading the patch data", needed, err) != SC_OK) {
         sc_gpu_data_free(gl, data);
         return SC_FAIL;
     }
     return SC_OK;
+}
+
+int sc_gpu_data_upload_from(const sc_gl *gl, const sc_scene *scene,
+                            const sc_patch_list *patches, const scg_key *keys,
+                            sc_gpu_data *data, sc_error *err)
+{
+    if (sc_gpu_data_build_from(gl, scene, patches, keys, data, err) != SC_OK)
+        return SC_FAIL;
+    return sc_gpu_data_send(gl, data, data->bytes, err);
 }
 
 int sc_gpu_data_update_surface_from(const sc_gl *gl, sc_gpu_data *data, const sc_scene *scene,
@@ -335,6 +364,8 @@ void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data)
         gl->DeleteTextures(SCG_TEXTURE_COUNT, data->textures);
     if (data->buffers[0])
         gl->DeleteBuffers(SCG_TEXTURE_COUNT, data->buffers);
+    for (int t = 0; t < SCG_TEXTURE_COUNT; t++)
+        free(data->staged[t]);
     free(data->surfaces);
     free(data->centres);
     memset(data, 0, sizeof *data);

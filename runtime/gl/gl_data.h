@@ -34,6 +34,9 @@ typedef struct sc_gpu_data {
                                           as in the record) */
     size_t bytes;                      /* GPU bytes of all three textures */
     size_t bytes_uploaded;             /* by the last upload or update */
+    float *staged[SCG_TEXTURE_COUNT];  /* built, not yet sent: between
+                                          sc_gpu_data_build_from and
+                                          sc_gpu_data_send */
 } sc_gpu_data;
 
 /* Uploads every surface of the scene; keys[s], the key surface s is drawn
@@ -45,6 +48,16 @@ typedef struct sc_gpu_data {
 int sc_gpu_data_upload_from(const sc_gl *gl, const sc_scene *scene,
                             const sc_patch_list *patches, const scg_key *keys,
                             sc_gpu_data *data, sc_error *err);
+/* The two halves of sc_gpu_data_upload_from, so that a caller can weigh
+ * the bytes (data->bytes, with its own) before anything reaches the GPU:
+ * build lays the data out in memory (and checks the layout's limits);
+ * send uploads it and frees the staged copy. A GL_OUT_OF_MEMORY names
+ * `needed`, the bytes of GPU data of the whole scene (sc_gl_fail_memory);
+ * on any failure the data is freed. */
+int sc_gpu_data_build_from(const sc_gl *gl, const sc_scene *scene,
+                           const sc_patch_list *patches, const scg_key *keys,
+                           sc_gpu_data *data, sc_error *err);
+int sc_gpu_data_send(const sc_gl *gl, sc_gpu_data *data, size_t needed, sc_error *err);
 /* After surface s of the scene changed (patches[s] made again from it):
  * rewrites its ranges alone when its data keeps its size (same degrees,
  * counts, kind and trim pieces), else uploads all; *moved (when not NULL)

@@ -2,8 +2,32 @@
  * GetProcAddress and checks the context's version (gl_loader.h). */
 #include "gl_loader.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* "4.6 (Core Profile) Mesa 22.3.6", "OpenGL ES 3.2 Mesa …": the first
+ * number pair. */
+static void parse_version(const char *version, int *major, int *minor)
+{
+    const char *digits = version;
+    while (*digits && (*digits < '0' || *digits > '9'))
+        digits++;
+    char *end;
+    *major = (int)strtol(digits, &end, 10);
+    *minor = *end == '.' ? (int)strtol(end + 1, NULL, 10) : 0;
+}
+
+int sc_gl_fail_version(sc_error *err, const char *backend, const char *version, int major,
+                       int minor)
+{
+    int have_major, have_minor;
+    parse_version(version, &have_major, &have_minor);
+    return sc_fail(err, NULL, 0,
+                   "%s%sOpenGL %d.%d core is required, the driver offers %d.%d (\"%s\")",
+                   backend ? backend : "", backend ? ": " : "", major, minor, have_major,
+                   have_minor, version);
+}
 
 int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
                int minor, sc_error *err)
@@ -17,16 +41,10 @@ int sc_gl_load(sc_gl *gl, sc_gl_get_proc_fn get_proc, void *user, int major,
     const char *version = (const char *)gl->GetString(GL_VERSION);
     if (!version)
         return sc_fail(err, NULL, 0, "OpenGL: glGetString(GL_VERSION) failed (no current context?)");
-    const char *digits = version;
-    while (*digits && (*digits < '0' || *digits > '9'))
-        digits++;  /* "OpenGL ES 3.2 Mesa" style prefixes */
-    char *end;
-    int have_major = (int)strtol(digits, &end, 10);
-    int have_minor = *end == '.' ? (int)strtol(end + 1, NULL, 10) : 0;
+    int have_major, have_minor;
+    parse_version(version, &have_major, &have_minor);
     if (have_major * 100 + have_minor < major * 100 + minor)
-        return sc_fail(err, NULL, 0,
-                       "OpenGL %d.%d core is required, the context has \"%s\"", major,
-                       minor, version);
+        return sc_gl_fail_version(err, NULL, version, major, minor);
     gl->major = have_major;
     gl->minor = have_minor;
 
@@ -64,6 +82,31 @@ const char *sc_gl_error_name(GLenum code)
     }
 }
 
+int sc_gl_fail_memory(sc_error *err, size_t needed, const char *cause)
+{
+    return sc_fail(err, NULL, 0, "out of GPU memory: the scene needs %zu bytes of GPU data (%s)",
+                   needed, cause);
+}
+
+/* glGetError, drained so that the next check reports its own error; an
+ * error found is logged and returned in err, GL_OUT_OF_MEMORY with the
+ * scene's size when `needed` is known. */
+static int check_error(const sc_gl *gl, const char *what, size_t needed, sc_error *err)
+{
+    GLenum code = gl->GetError();
+    if (code == GL_NO_ERROR)
+        return SC_OK;
+    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; i++)
+        ;
+    sc_log(SC_LOG_ERROR, "OpenGL error %s after %s", sc_gl_error_name(code), what);
+    if (code == GL_OUT_OF_MEMORY && needed) {
+        char cause[160];
+        snprintf(cause, sizeof cause, "GL_OUT_OF_MEMORY after %s", what);
+        return sc_gl_fail_memory(err, needed, cause);
+    }
+    return sc_fail(err, NULL, 0, "OpenGL error %s after %s", sc_gl_error_name(code), what);
+}
+
 int sc_gl_check(const sc_gl *gl, const char *what, sc_error *err)
 {
 #ifdef NDEBUG
@@ -72,13 +115,11 @@ int sc_gl_check(const sc_gl *gl, const char *what, sc_error *err)
     (void)err;
     return SC_OK;
 #else
-    GLenum code = gl->GetError();
-    if (code == GL_NO_ERROR)
-        return SC_OK;
-    /* Drain the queue so that the next check reports its own error. */
-    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; i++)
-        ;
-    sc_log(SC_LOG_ERROR, "OpenGL error %s after %s", sc_gl_error_name(code), what);
-    return sc_fail(err, NULL, 0, "OpenGL error %s after %s", sc_gl_error_name(code), what);
+    return check_error(gl, what, 0, err);
 #endif
+}
+
+int sc_gl_check_upload(const sc_gl *gl, const char *what, size_t needed, sc_error *err)
+{
+    return check_error(gl, what, needed, err);
 }

@@ -4,6 +4,7 @@
  * update of one surface's share of them. Frames are drawn in gl_render.c. */
 #include "gl_render_private.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -83,6 +84,28 @@ static void fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex
     }
 }
 
+/* GPU bytes of the hulls' vertex and index buffers (neither is ever
+ * empty). */
+static void hull_buffer_bytes(const sc_hulls *h, size_t *vbytes, size_t *ibytes)
+{
+    *vbytes = (size_t)(h->nvertices ? h->nvertices : 1) * sizeof(gpu_vertex);
+    *ibytes = (size_t)(h->nindices ? h->nindices : 1) * sizeof(uint32_t);
+}
+
+static size_t colour_buffer_bytes(const sc_scene *scene)
+{
+    return (size_t)(scene->nsurfaces ? scene->nsurfaces : 1) * 4 * sizeof(float);
+}
+
+/* The GPU data the whole scene needs: patch data (built, r->data.bytes),
+ * hulls and colours; what an out-of-memory message names. */
+static size_t scene_gpu_bytes(const sc_renderer *r)
+{
+    size_t vbytes, ibytes;
+    hull_buffer_bytes(&r->hulls, &vbytes, &ibytes);
+    return r->data.bytes + vbytes + ibytes + colour_buffer_bytes(r->scene);
+}
+
 /* Every hull into new vertex and index buffers, and the per-hull scratch
  * of a frame sized for them. */
 static int upload_hulls(sc_renderer *r, sc_error *err)
@@ -97,8 +120,8 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
         gl->DeleteBuffers(1, &r->index_buffer);
     gl->CreateBuffers(1, &r->vertex_buffer);
     gl->CreateBuffers(1, &r->index_buffer);
-    size_t vbytes = (size_t)(h->nvertices ? h->nvertices : 1) * sizeof *verts;
-    size_t ibytes = (size_t)(h->nindices ? h->nindices : 1) * sizeof(uint32_t);
+    size_t vbytes, ibytes;
+    hull_buffer_bytes(h, &vbytes, &ibytes);
     /* Dynamic: a surface update rewrites its range. */
     gl->NamedBufferStorage(r->vertex_buffer, (GLsizeiptr)vbytes, verts, GL_DYNAMIC_STORAGE_BIT);
     /* Rewritten every frame in drawing order. */
@@ -117,7 +140,7 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     r->inside = sc_realloc(r->inside, count, sizeof *r->inside);
     /* At most one run per hull, plus the inside hulls' runs per group. */
     r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
-    return sc_gl_check(gl, "uploading the hulls", err);
+    return sc_gl_check_upload(gl, "uploading the hulls", scene_gpu_bytes(r), err);
 }
 
 /* The vertices of surface s's hulls, rewritten in their range of the
@@ -190,7 +213,7 @@ static void setup_vertex_array(sc_renderer *r)
 #undef X
 }
 
-static void upload_colours(sc_renderer *r)
+static int upload_colours(sc_renderer *r, sc_error *err)
 {
     const sc_gl *gl = r->gl;
     int n = r->scene->nsurfaces ? r->scene->nsurfaces : 1;
@@ -200,11 +223,12 @@ static void upload_colours(sc_renderer *r)
         colours[4 * s + 3] = 1;
     }
     gl->CreateBuffers(1, &r->colour_buffer);
-    r->colour_bytes = (size_t)n * 4 * sizeof(float);
+    r->colour_bytes = colour_buffer_bytes(r->scene);
     gl->NamedBufferStorage(r->colour_buffer, (GLsizeiptr)r->colour_bytes, colours, 0);
     gl->CreateTextures(GL_TEXTURE_BUFFER, 1, &r->colour_texture);
     gl->TextureBuffer(r->colour_texture, GL_RGBA32F, r->colour_buffer);
     free(colours);
+    return sc_gl_check_upload(gl, "uploading the colours", scene_gpu_bytes(r), err);
 }
 
 int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
@@ -247,12 +271,23 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     for (int s = 0; s < n; s++)
         sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
     if (sc_hulls_build_from(scene, r->patches, &r->desc.hulls, &r->hulls, err) != SC_OK ||
-        sc_gpu_data_upload_from(gl, scene, r->patches, r->keys, &r->data, err) != SC_OK)
+        sc_gpu_data_build_from(gl, scene, r->patches, r->keys, &r->data, err) != SC_OK)
+        goto fail;
+    /* Weighed before anything is sent, so that a refused scene leaves no
+     * buffer behind, half filled or not. */
+    size_t needed = scene_gpu_bytes(r);
+    if (r->desc.gpu_memory_budget && needed > r->desc.gpu_memory_budget) {
+        char cause[96];
+        snprintf(cause, sizeof cause, "the GPU memory budget is %zu bytes",
+                 r->desc.gpu_memory_budget);
+        sc_gl_fail_memory(err, needed, cause);
+        goto fail;
+    }
+    if (sc_gpu_data_send(gl, &r->data, needed, err) != SC_OK)
         goto fail;
     setup_vertex_array(r);
-    upload_colours(r);
     set_raster_origin(r);
-    if (upload_hulls(r, err) != SC_OK)
+    if (upload_colours(r, err) != SC_OK || upload_hulls(r, err) != SC_OK)
         goto fail;
     build_groups(r);
     group_hulls(r);

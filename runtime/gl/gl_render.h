@@ -42,6 +42,12 @@ typedef struct sc_render_desc {
     sc_program_cache *programs; /* the cache to take programs from, shared
                                with whoever else uses it and outliving the
                                renderer; NULL: a cache of the renderer's own */
+    size_t gpu_memory_budget; /* most bytes of GPU data (patch data, hulls,
+                               colours) the renderer may upload; a scene that
+                               needs more is refused before anything is sent,
+                               with the message a real GL_OUT_OF_MEMORY gives
+                               (sc_gl_fail_memory). 0: no budget. Render
+                               targets are not counted */
 } sc_render_desc;
 
 /* Chosen by measurement (docs/speed.md, `splinecast bench --order`). */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "emit_glsl.h"
+#include "glslang_check.h"
 
 typedef struct entry {
     char key_text[SCG_KEY_MAX];
@@ -49,7 +50,8 @@ void sc_program_cache_destroy(sc_program_cache *cache)
     free(cache);
 }
 
-/* Compiles one stage; on failure err gets the driver's log and the key. */
+/* Compiles one stage; on failure err gets the driver's log, the line it
+ * names and the key. */
 static GLuint compile(const sc_gl *gl, GLenum stage, const char *source, const char *key,
                       sc_error *err)
 {
@@ -59,26 +61,25 @@ static GLuint compile(const sc_gl *gl, GLenum stage, const char *source, const c
     GLint ok = 0;
     gl->GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        char log[400];
+        char log[1024] = "";
         gl->GetShaderInfoLog(shader, sizeof log, NULL, log);
         gl->DeleteShader(shader);
-        sc_fail(err, NULL, 0, "the driver rejected the %s program: %s",
-                stage == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
-        if (err)
-            snprintf(err->key, sizeof err->key, "%s", key);
+        scg_fail_shader_log(err, key,
+                            stage == GL_VERTEX_SHADER ? "the driver rejected vert"
+                                                      : "the driver rejected frag",
+                            log, source);
         return 0;
     }
     return shader;
 }
 
-static GLuint vertex_shader_for(sc_program_cache *cache, const scg_generated *gen,
-                                sc_error *err)
+static GLuint vertex_shader_for(sc_program_cache *cache, const char *name, const char *source,
+                                const char *key, sc_error *err)
 {
     for (int i = 0; i < cache->nvertex; i++)
-        if (!strcmp(cache->vertex[i].name, gen->vertex_name))
+        if (!strcmp(cache->vertex[i].name, name))
             return cache->vertex[i].shader;
-    GLuint shader = compile(cache->gl, GL_VERTEX_SHADER, scg_text_str(&gen->vertex), gen->key,
-                            err);
+    GLuint shader = compile(cache->gl, GL_VERTEX_SHADER, source, key, err);
     if (!shader)
         return 0;
     if (cache->nvertex == cache->cap_vertex) {
@@ -86,31 +87,29 @@ static GLuint vertex_shader_for(sc_program_cache *cache, const scg_generated *ge
         cache->vertex = sc_realloc(cache->vertex, (size_t)cache->cap_vertex, sizeof *cache->vertex);
     }
     vertex_shader *v = &cache->vertex[cache->nvertex++];
-    snprintf(v->name, sizeof v->name, "%s", gen->vertex_name);
+    snprintf(v->name, sizeof v->name, "%s", name);
     v->shader = shader;
     return shader;
 }
 
-int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *out,
-                       sc_error *err)
+/* The cached program of the key's canonical text, or 0. */
+static uint32_t find(const sc_program_cache *cache, const char *text)
 {
-    char text[SCG_KEY_MAX];
-    scg_key_format(key, text, sizeof text);
     for (int i = 0; i < cache->count; i++)
-        if (!strcmp(cache->entries[i].key_text, text)) {
-            out->id = (uint32_t)i + 1;
-            return SC_OK;
-        }
-    out->id = 0;
+        if (!strcmp(cache->entries[i].key_text, text))
+            return (uint32_t)i + 1;
+    return 0;
+}
+
+/* Compiles, links and caches; gen_ms is what generating took. */
+static int from_glsl(sc_program_cache *cache, const scg_key *key, const char *text,
+                     const char *vertex_name, const char *vertex, const char *fragment,
+                     double gen_ms, sc_program *out, sc_error *err)
+{
     const sc_gl *gl = cache->gl;
-    double t0 = sc_now();
-    scg_generated gen;
-    if (scg_generate(key, &gen, err) != SC_OK)
-        return SC_FAIL;
     double t1 = sc_now();
-    GLuint vs = vertex_shader_for(cache, &gen, err);
-    GLuint fs = vs ? compile(gl, GL_FRAGMENT_SHADER, scg_text_str(&gen.fragment), text, err) : 0;
-    scg_generated_free(&gen);
+    GLuint vs = vertex_shader_for(cache, vertex_name, vertex, text, err);
+    GLuint fs = vs ? compile(gl, GL_FRAGMENT_SHADER, fragment, text, err) : 0;
     if (!fs)
         return SC_FAIL;
     GLuint program = gl->CreateProgram();
@@ -123,13 +122,13 @@ int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *
     GLint ok = 0;
     gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
     if (!ok) {
-        char log[400];
+        char log[1024] = "";
         gl->GetProgramInfoLog(program, sizeof log, NULL, log);
         gl->DeleteProgram(program);
-        sc_fail(err, NULL, 0, "the driver could not link the program: %s", log);
-        if (err)
-            snprintf(err->key, sizeof err->key, "%s", text);
-        return SC_FAIL;
+        /* Link logs seldom name a line; when one does, it is the
+         * fragment program's (the vertex programs are shared and linked
+         * with every key). */
+        return scg_fail_shader_log(err, text, "the driver could not link frag", log, fragment);
     }
     double t2 = sc_now();
     if (cache->count == cache->cap) {
@@ -140,12 +139,40 @@ int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *
     snprintf(e->key_text, sizeof e->key_text, "%s", text);
     e->key = *key;
     e->program = program;
-    e->gen_ms = 1e3 * (t1 - t0);
+    e->gen_ms = gen_ms;
     e->gl_ms = 1e3 * (t2 - t1);
     sc_log(SC_LOG_INFO, "program %s: generated in %.0f ms, compiled in %.0f ms", text, e->gen_ms,
            e->gl_ms);
     out->id = (uint32_t)cache->count;
     return SC_OK;
+}
+
+int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *out,
+                       sc_error *err)
+{
+    char text[SCG_KEY_MAX];
+    scg_key_format(key, text, sizeof text);
+    if ((out->id = find(cache, text)) != 0)
+        return SC_OK;
+    double t0 = sc_now();
+    scg_generated gen;
+    if (scg_generate(key, &gen, err) != SC_OK)
+        return SC_FAIL;
+    int status = from_glsl(cache, key, text, gen.vertex_name, scg_text_str(&gen.vertex),
+                           scg_text_str(&gen.fragment), 1e3 * (sc_now() - t0), out, err);
+    scg_generated_free(&gen);
+    return status;
+}
+
+int sc_program_from_glsl(sc_program_cache *cache, const scg_key *key, const char *vertex_name,
+                         const char *vertex, const char *fragment, sc_program *out,
+                         sc_error *err)
+{
+    char text[SCG_KEY_MAX];
+    scg_key_format(key, text, sizeof text);
+    if ((out->id = find(cache, text)) != 0)
+        return SC_OK;
+    return from_glsl(cache, key, text, vertex_name, vertex, fragment, 0, out, err);
 }
 
 static const entry *lookup(const sc_program_cache *cache, sc_program program)

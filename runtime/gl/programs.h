@@ -22,9 +22,18 @@ void sc_program_cache_destroy(sc_program_cache *cache);
 
 /* The program of `key`: from the cache, or generated, validated, compiled
  * and linked now. A failure names the key (err->key) and, for a rejected
- * program, the compiler's message. */
+ * program, the compiler's message and the GLSL line it points at. */
 int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *out,
                        sc_error *err);
+
+/* The driver half of sc_program_for_key (compile, link, cache) for GLSL
+ * given here: a vertex program already compiled under vertex_name is
+ * reused. For GLSL from elsewhere, and for tests of what a driver's
+ * rejection reports: the key (err->key), the driver's first message and,
+ * when it names one, the GLSL line, quoted. */
+int sc_program_from_glsl(sc_program_cache *cache, const scg_key *key, const char *vertex_name,
+                         const char *vertex, const char *fragment, sc_program *out,
+                         sc_error *err);
 
 GLuint sc_program_gl_name(const sc_program_cache *cache, sc_program program);
 const scg_key *sc_program_key(const sc_program_cache *cache, sc_program program);
