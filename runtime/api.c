@@ -97,8 +97,43 @@ int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err)
     }
     for (int i = 0; i < sc->nskipped; i++)
         info->skipped += sc->skipped[i].count;
+    info->skipped_kinds = sc->nskipped;
+    info->dropped_loops = sc->dropped_loops;
     sc_scene_bounds(sc, info->lo, info->hi);
     return SC_OK;
+}
+
+int sc_query_scene_skipped(sc_scene_id scene, int index, sc_skipped_info *info,
+                           sc_error *err)
+{
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    if (!s)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    if (index < 0 || index >= s->scene.nskipped)
+        return sc_api_invalid(err, "index", PROBLEM_RANGE, "%d (0 to %d)", index,
+                              s->scene.nskipped - 1);
+    const sc_skipped *k = &s->scene.skipped[index];
+    _Static_assert(sizeof info->type == sizeof k->type && sizeof info->reason == sizeof k->reason,
+                   "public and internal skipped records hold the same texts");
+    memset(info, 0, sizeof *info);
+    memcpy(info->type, k->type, sizeof info->type);
+    memcpy(info->reason, k->reason, sizeof info->reason);
+    info->count = k->count;
+    return SC_OK;
+}
+
+int sc_save_obj(sc_scene_id scene, const char *path, sc_error *err)
+{
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    if (!s)
+        return SC_FAIL;
+    if (!path)
+        return sc_api_invalid(err, "path", PROBLEM_NULL, NULL);
+    if (!has_extension(path, ".obj"))
+        return sc_api_invalid(err, "path", PROBLEM_RANGE, "'%s' (a name ending in .obj)", path);
+    return sc_write_obj(path, &s->scene, err);
 }
 
 /* ---- surfaces ---- */
@@ -128,6 +163,34 @@ int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
                               .nv = surf->nv, .rational = surf->rational != 0,
                               .trim_loops = surf->nloops};
     snprintf(info->name, sizeof info->name, "%s", surf->name);
+    for (int l = 0; l < surf->nloops; l++)
+        info->trim_curves += surf->loops[l].ncurves;
+    sc_surface_domain(surf, &info->u_min, &info->u_max, &info->v_min, &info->v_max);
+    return SC_OK;
+}
+
+int sc_eval_surface(sc_scene_id scene, int surface, double u, double v, sc_surface_point *out,
+                    sc_error *err)
+{
+    const sc_surface *surf = scene_surface(scene, surface, err);
+    if (!surf)
+        return SC_FAIL;
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    memset(out, 0, sizeof *out);
+    double u0, u1, v0, v1;
+    sc_surface_domain(surf, &u0, &u1, &v0, &v1);
+    if (!(u >= u0 && u <= u1 && v >= v0 && v <= v1))
+        return sc_api_invalid(err, "(u, v)", PROBLEM_RANGE,
+                              "(%.17g, %.17g) (u in [%.17g, %.17g], v in [%.17g, %.17g])", u, v,
+                              u0, u1, v0, v1);
+    sc_surface_eval_world(surf, u, v, out->point, out->du, out->dv);
+    if (sc_surface_normal(surf, u, v, out->normal) == 0) {
+        sc_xform_normal(surf->xform, out->normal, out->normal);
+        out->has_normal = 1;
+    } else {
+        memset(out->normal, 0, sizeof out->normal);
+    }
     return SC_OK;
 }
 
@@ -238,6 +301,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->start = desc->start;
     opts->termination = desc->termination;
     opts->outputs = desc->outputs;
+    opts->skip_undrawable = desc->skip_undrawable != 0;
     return SC_OK;
 }
 

