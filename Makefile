@@ -52,7 +52,7 @@ $(BUILD)/examples/%.o:          INC = $(INC_API)
 # it uses the library as any program would: the files listed here see only
 # the public include paths (a use of an internal header is a compile
 # error); the others still see everything until they are ported.
-CLI_PUBLIC = main.c cli.c options.c cmd_diff.c cmd_info.c cmd_eval.c cmd_convert.c
+CLI_PUBLIC = main.c cli.c options.c cmd_diff.c cmd_info.c cmd_eval.c cmd_convert.c cmd_ref.c cmd_render.c
 $(patsubst %.c,$(BUILD)/examples/splinecast/%.o,$(CLI_PUBLIC)): INC = -Iruntime -Igen/base
 $(BUILD)/tests/%.o:             INC = $(INC_API) -Itests -Iexamples/splinecast
 
@@ -66,8 +66,10 @@ SCENE_FILES  = examples/scenes/teapot32.bpt
 LIB_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(RUNTIME_SRC) $(GEN_SRC)) \
            $(BUILD)/embedded_templates.o $(BUILD)/embedded_scenes.o
 CLI_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
-# The tests also check the command line's spellings of the options.
-TEST_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC)) $(BUILD)/examples/splinecast/options.o
+# The tests also check the command line's spellings of the options and
+# its file names.
+TEST_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC)) $(BUILD)/examples/splinecast/options.o \
+           $(BUILD)/examples/splinecast/cli.o
 
 LIB  = $(BUILD)/libsplinecast.a
 CLI  = $(BUILD)/splinecast

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image.h"
 #include "io.h"
 #include "nurbs.h"
 #include "splinecast.h"
@@ -157,5 +158,95 @@ TEST(api_cli_save_obj_round_trip)
     CHECK_INT(sc_save_obj(scene, "out.igs", &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "a name ending in .obj");
     sc_destroy_scene(back);
+    sc_destroy_scene(scene);
+}
+
+static void count_progress(double fraction, void *user)
+{
+    int *calls = user;
+    (*calls)++;
+    (void)fraction;
+}
+
+TEST(api_cli_reference_stats_and_camera)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    CHECK_INT(sc_check_camera(&(sc_camera_desc){.text = "0,0,0,1,2,3"}, &err), SC_FAIL);
+    CHECK_INT(sc_check_camera(&(sc_camera_desc){.text = "1,1,1,1,1,1,30"}, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "eye and target are the same point");
+    CHECK_INT(sc_check_camera(&(sc_camera_desc){.width = 20000}, &err), SC_FAIL);
+    sc_camera_desc view = {.width = 64, .height = 48, .text = "8,-6,5,0,0,1.2,30"};
+    CHECK_INT(sc_check_camera(&view, &err), SC_OK);
+    CHECK_INT(sc_check_camera(NULL, &err), SC_OK);
+
+    int calls = 0;
+    sc_reference_desc desc = {.threads = 2, .progress = count_progress, .progress_user = &calls};
+    sc_frame_id frame;
+    CHECK_INT(sc_render_reference(scene, &view, &desc, &frame, &err), SC_OK);
+    CHECK(calls > 0);
+    sc_frame_info info;
+    CHECK_INT(sc_query_frame_info(frame, &info, &err), SC_OK);
+    CHECK_STR(info.camera, "8,-6,5,0,0,1.2,30");
+    CHECK_INT(info.reference.rays, 64 * 48);
+    CHECK_INT(info.reference.threads, 2);
+    long hits = 0;
+    for (int p = 0; p < 64 * 48; p++)
+        hits += info.surface[p] >= 0;
+    CHECK_INT(info.reference.hits, hits);
+    CHECK(hits > 0 && info.reference.subdivisions > 0);
+    CHECK_INT(info.reference.over_budget, 0);
+
+    /* A reference frame's PNG is RGB, as `ref` writes it. */
+    char path[1024];
+    snprintf(path, sizeof path, "%s/api_ref.png", test_tmpdir());
+    CHECK_INT(sc_save_png(frame, path, &err), SC_OK);
+    sc_image img;
+    CHECK_INT(sc_png_read(path, &img, &err), SC_OK);
+    CHECK_INT(img.channels, 3);
+    CHECK_INT(img.pixels[0], info.rgba[0]);
+    sc_image_free(&img);
+    sc_destroy_frame(frame);
+    sc_destroy_scene(scene);
+}
+
+TEST(api_cli_draw_then_read_frame)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_renderer_id r;
+    CHECK_INT(sc_make_renderer(ctx, scene, NULL, &r, &err), SC_OK);
+    sc_frame_id none;
+    sc_camera_desc view = {.width = 96, .height = 96};
+    /* sc_draw then sc_read_frame gives the frame sc_render gives. */
+    CHECK_INT(sc_draw(r, &view, &err), SC_OK);
+    sc_renderer_info info;
+    CHECK_INT(sc_query_renderer_info(r, &info, &err), SC_OK);
+    CHECK(info.draw_calls > 0);
+    CHECK(info.program_switches > 0);
+    CHECK(info.readbacks >= 0 && info.culled_hulls >= 0);
+    sc_frame_id a, b;
+    CHECK_INT(sc_read_frame(r, &a, &err), SC_OK);
+    CHECK_INT(sc_render(r, &view, &b, &err), SC_OK);
+    sc_frame_info fa, fb;
+    CHECK_INT(sc_query_frame_info(a, &fa, &err), SC_OK);
+    CHECK_INT(sc_query_frame_info(b, &fb, &err), SC_OK);
+    CHECK_INT(fa.width, 96);
+    CHECK_INT(memcmp(fa.surface, fb.surface, 96 * 96 * sizeof *fa.surface), 0);
+    CHECK_INT(memcmp(fa.rgba, fb.rgba, 96 * 96 * 4), 0);
+    CHECK_STR(fa.camera, fb.camera);
+    CHECK_INT((int)fa.reference.rays, 0);
+    CHECK_INT(sc_read_frame((sc_renderer_id){0}, &none, &err), SC_FAIL);
+    CHECK_INT(sc_draw(r, &(sc_camera_desc){.text = "bad"}, &err), SC_FAIL);
+    sc_destroy_frame(a);
+    sc_destroy_frame(b);
+    sc_destroy_context(ctx);
     sc_destroy_scene(scene);
 }

@@ -13,6 +13,7 @@
 
 #include "aov.h"
 #include "camera.h"
+#include "commands.h"
 #include "image.h"
 #include "imgdiff.h"
 #include "io.h"
@@ -304,9 +305,9 @@ TEST(ref_aov_round_trip)
     CHECK_INT(err.line, 1);
     sc_aov_free(&a);
     char name[256];
-    sc_aov_path_for("out.png", name, sizeof name);
+    cli_aov_path("out.png", name, sizeof name);
     CHECK_STR(name, "out.aov");
-    sc_aov_path_for("dir.v2/out", name, sizeof name);
+    cli_aov_path("dir.v2/out", name, sizeof name);
     CHECK_STR(name, "dir.v2/out.aov");
 }
 

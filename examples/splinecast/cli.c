@@ -25,6 +25,16 @@ int cli_usage_error(const char *name, const char *fmt, ...)
     return 2;
 }
 
+void cli_aov_path(const char *image_path, char *buf, size_t size)
+{
+    size_t n = strlen(image_path);
+    const char *dot = strrchr(image_path, '.');
+    const char *slash = strrchr(image_path, '/');
+    if (dot && (!slash || dot > slash) && dot != image_path && (!slash || dot > slash + 1))
+        n = (size_t)(dot - image_path);
+    snprintf(buf, size, "%.*s.aov", (int)n, image_path);
+}
+
 int cli_report(const struct sc_error *err)
 {
     char buf[1024];
