@@ -350,7 +350,8 @@ static void fill_audit(sc_shader_audit *audit, const scg_generated *gen, scg_sta
 {
     scg_audit_line line;
     int fragment = stage == SCG_STAGE_FRAGMENT;
-    scg_audit_fill(&line, gen->key, stage, fragment ? gen->program : NULL,
+    /* Keys share vertex programs: a vertex line names its program. */
+    scg_audit_fill(&line, fragment ? gen->key : gen->vertex_name, stage, fragment ? gen->program : NULL,
                    fragment ? &gen->fragment_check : &gen->vertex_check,
                    scg_text_str(fragment ? &gen->fragment : &gen->vertex));
     audit->inst = line.value[SCG_AUDIT_INST];
@@ -385,6 +386,11 @@ int sc_generate_glsl(const sc_glsl_desc *desc, sc_glsl *out, sc_error *err)
     if (desc->audit) {
         fill_audit(&out->vertex_audit, &gen, SCG_STAGE_VERTEX);
         fill_audit(&out->fragment_audit, &gen, SCG_STAGE_FRAGMENT);
+        scg_text kinds = {0};
+        scg_audit_format_kinds(gen.program, gen.key, &kinds);
+        size_t size;
+        out->ir_kinds = copy_text(&kinds, &size);
+        scg_text_free(&kinds);
     }
     scg_generated_free(&gen);
     return SC_OK;
@@ -396,5 +402,30 @@ void sc_free_glsl(sc_glsl *glsl)
         return;
     free(glsl->vertex);
     free(glsl->fragment);
+    free(glsl->ir_kinds);
     memset(glsl, 0, sizeof *glsl);
+}
+
+int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
+                      sc_error *err)
+{
+    const sc_audit_text *texts[2] = {before, after};
+    const char *what[2] = {"before", "after"};
+    for (int k = 0; k < 2; k++)
+        if (!texts[k] || !texts[k]->name || (!texts[k]->text && texts[k]->size))
+            return sc_api_invalid(err, what[k], PROBLEM_NULL, NULL);
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    scg_audit_line *lines[2] = {NULL, NULL};
+    int count[2] = {0, 0};
+    for (int k = 0; k < 2; k++)
+        if (scg_audit_read(texts[k]->name, texts[k]->text, texts[k]->size, &lines[k], &count[k],
+                           err) != SC_OK) {
+            free(lines[0]);
+            return SC_FAIL;
+        }
+    scg_audit_compare(out, lines[0], count[0], lines[1], count[1], NULL);
+    free(lines[0]);
+    free(lines[1]);
+    return SC_OK;
 }

@@ -27,6 +27,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "splinecast_base.h"
 #include "splinecast_options.h"   /* the options' enums: sc_start, sc_show, … */
@@ -206,7 +207,9 @@ typedef struct sc_shader_audit {
     long bytes;                /* GLSL size */
     int register_bound;        /* M + 2N for orders M >= N (Pabst et al. 4.2);
                                   0 when the degrees are not fixed */
-    char line[256];            /* "KEY - FS: N inst, N spirv-inst, …" */
+    char line[256];            /* "KEY - FS: N inst, N spirv-inst, …"; the
+                                  vertex stage's is named by its vertex
+                                  program: "NAME - VS: …" */
 } sc_shader_audit;
 
 /* Zero means default, except the key, which is required. */
@@ -223,12 +226,30 @@ typedef struct sc_glsl {
     char *vertex, *fragment;   /* GLSL 4.50 core, NUL-terminated */
     size_t vertex_size, fragment_size;
     sc_shader_audit vertex_audit, fragment_audit;  /* zero unless desc->audit */
+    char *ir_kinds;            /* with desc->audit: "KEY - FS by kind: add 12,
+                                  mul 30, …", the optimised IR's
+                                  instructions by kind; else NULL */
 } sc_glsl;
 
 /* Builds, optimises, emits and validates both stages of a key (no GL
  * needed). A rejected program fails with the key and the offending line. */
 int sc_generate_glsl(const sc_glsl_desc *desc, sc_glsl *out, sc_error *err);
 void sc_free_glsl(sc_glsl *glsl);
+
+/* A saved audit (the lines of `splinecast audit`) in memory; name names it
+ * in messages. */
+typedef struct sc_audit_text {
+    const char *name;
+    const char *text;
+    size_t size;
+} sc_audit_text;
+
+/* Prints to out what got better and worse per metric from one audit to
+ * the other, the shaders added and removed, and totals over the shaders
+ * both hold (`splinecast audit --compare`, docs/audit.md). A line that is
+ * not an audit line, or a shader audited twice, fails with name:line. */
+int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
+                      sc_error *err);
 
 /* ---- GL contexts and runtime specialization ---------------------------- */
 

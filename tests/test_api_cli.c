@@ -3,8 +3,10 @@
  * entities, surfaces no program draws), `eval`'s surface evaluation,
  * `convert`'s OBJ writer, the reference's statistics and progress,
  * `render`'s timing calls (draw without read back, per-frame counts) and
- * the view checked without a scene. Each is checked against the internal
- * module it wraps or against known values. */
+ * the view checked without a scene, the audit's lines and comparison. Each
+ * is checked against the internal module it wraps or against known values.
+ * A test that makes objects ends with sc_shutdown, so that the handle
+ * checks of test_install.c see fresh pools. */
 #include "test.h"
 
 #include <math.h>
@@ -83,6 +85,7 @@ TEST(api_cli_scene_and_surface_queries)
     CHECK_INT(curves, 9);
     sc_scene_free(&internal);
     sc_destroy_scene(scene);
+    sc_shutdown();
 }
 
 TEST(api_cli_eval_matches_the_nurbs_core)
@@ -107,6 +110,7 @@ TEST(api_cli_eval_matches_the_nurbs_core)
     }
     sc_scene_free(&teapot);
     sc_destroy_scene(scene);
+    sc_shutdown();
 }
 
 TEST(api_cli_keys_skip_undrawable)
@@ -136,6 +140,7 @@ TEST(api_cli_keys_skip_undrawable)
     CHECK_INT(n, 1);
     CHECK_CONTAINS(keys[0].text, "bez1x1-poly");
     sc_destroy_scene(scene);
+    sc_shutdown();
 }
 
 TEST(api_cli_save_obj_round_trip)
@@ -159,6 +164,7 @@ TEST(api_cli_save_obj_round_trip)
     CHECK_CONTAINS(err.message, "a name ending in .obj");
     sc_destroy_scene(back);
     sc_destroy_scene(scene);
+    sc_shutdown();
 }
 
 static void count_progress(double fraction, void *user)
@@ -209,6 +215,7 @@ TEST(api_cli_reference_stats_and_camera)
     sc_image_free(&img);
     sc_destroy_frame(frame);
     sc_destroy_scene(scene);
+    sc_shutdown();
 }
 
 TEST(api_cli_draw_then_read_frame)
@@ -249,4 +256,47 @@ TEST(api_cli_draw_then_read_frame)
     sc_destroy_frame(b);
     sc_destroy_context(ctx);
     sc_destroy_scene(scene);
+    sc_shutdown();   /* fresh pools for the tests after this one */
+}
+
+TEST(api_cli_audit_lines_and_compare)
+{
+    const char *key = "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade";
+    sc_error err = {0};
+    sc_glsl glsl;
+    CHECK_INT(sc_generate_glsl(&(sc_glsl_desc){.key = key, .audit = 1}, &glsl, &err), SC_OK);
+    /* The vertex line names the vertex program the key shares. */
+    char want[128];
+    snprintf(want, sizeof want, "%s - VS: ", glsl.vertex_name);
+    CHECK(!strncmp(glsl.vertex_audit.line, want, strlen(want)));
+    CHECK(glsl.ir_kinds && !strncmp(glsl.ir_kinds, key, strlen(key)));
+    CHECK_CONTAINS(glsl.ir_kinds, " - FS by kind: ");
+
+    /* An audit compared with itself changes nothing; a bad line is named. */
+    char text[1024];
+    snprintf(text, sizeof text, "# saved\n%s\n  %s\n%s\n", glsl.fragment_audit.line, glsl.ir_kinds,
+             glsl.vertex_audit.line);
+    sc_free_glsl(&glsl);
+    CHECK(glsl.ir_kinds == NULL);
+    sc_audit_text a = {.name = "a.audit", .text = text, .size = strlen(text)};
+    char path[1024];
+    snprintf(path, sizeof path, "%s/api_compare.txt", test_tmpdir());
+    FILE *out = fopen(path, "w+");
+    CHECK(out != NULL);
+    CHECK_INT(sc_compare_audits(&a, &a, out, &err), SC_OK);
+    long size = ftell(out);
+    CHECK(size > 0);
+    fclose(out);
+    sc_audit_text bad = {.name = "b.audit", .text = "x\nnot an audit line\n", .size = 20};
+    CHECK_INT(sc_compare_audits(&a, &bad, stdout, &err), SC_FAIL);
+    CHECK_STR(err.file, "b.audit");
+    CHECK_INT(err.line, 1);
+    sc_audit_text twice = {.name = "c.audit", .text = text, .size = 0};
+    char doubled[2048];
+    snprintf(doubled, sizeof doubled, "%s%s", text, text);
+    twice.text = doubled;
+    twice.size = strlen(doubled);
+    CHECK_INT(sc_compare_audits(&twice, &a, stdout, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "already audited on line 2");
+    CHECK_INT(sc_compare_audits(NULL, &a, stdout, &err), SC_FAIL);
 }

@@ -14,6 +14,7 @@
 #include "io.h"
 #include "key.h"
 #include "scene_keys.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast gen KEYS -o DIR [--dump-ir]\n"
@@ -62,7 +63,13 @@ static void options_like(const scg_key *like, sc_key_options *opts)
     opts->outputs = like->outputs;
 }
 
-static void add_key(gen_keys *set, const scg_key *key)
+/* Keys while they are chosen: parsed, so that --iters can vary them. */
+typedef struct key_set {
+    scg_key *keys;
+    int count;
+} key_set;
+
+static void add_key(key_set *set, const scg_key *key)
 {
     for (int i = 0; i < set->count; i++)
         if (scg_key_equal(&set->keys[i], key))
@@ -94,7 +101,7 @@ static int parse_iters(const char *text, int *iters, int max)
 /* The keys the scene's surfaces need, each at every iteration count.
  * Returns 0, or 1 after printing why the scene could not be read. */
 static int add_scene_keys(const char *path, const scg_key *like, const int *iters, int niters,
-                          gen_keys *set)
+                          key_set *set)
 {
     sc_scene scene;
     sc_error err = {0};
@@ -125,7 +132,7 @@ static int add_scene_keys(const char *path, const scg_key *like, const int *iter
 /* The bez keys of every degree pair in LO..HI, rational and not, each at
  * every iteration count. Returns 0, or 2 after printing a usage error. */
 static int add_family_keys(const char *cmd, const char *family, const scg_key *like,
-                           const int *iters, int niters, gen_keys *set)
+                           const int *iters, int niters, key_set *set)
 {
     int lo, hi, used = 0;
     if (sscanf(family, "%d..%d%n", &lo, &hi, &used) != 2 || family[used] || lo < 1 || hi < lo ||
@@ -148,9 +155,10 @@ static int add_family_keys(const char *cmd, const char *family, const scg_key *l
     return 0;
 }
 
-int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *first_other)
+int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *out, int *first_other)
 {
-    memset(set, 0, sizeof *set);
+    memset(out, 0, sizeof *out);
+    key_set chosen = {0}, *set = &chosen;
     scg_key like;
     scg_key_default(&like, SCG_PATCH_BEZIER, 3, 3);
     like.ert = sc_key_ert(SC_TERMINATION_DEFAULT);
@@ -216,7 +224,7 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
         status = add_family_keys(cmd, family, &like, iters, niters, set);
     if (status == 0 && iters_given && ngiven > 0) {
         /* --iters with --key: every given key at every count. */
-        gen_keys expanded = {0};
+        key_set expanded = {0};
         for (int g = 0; g < set->count; g++)
             for (int k = 0; k < niters; k++) {
                 scg_key key = set->keys[g];
@@ -227,10 +235,13 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
         *set = expanded;
     }
     free(given);
-    if (status != 0) {
-        free(set->keys);
-        memset(set, 0, sizeof *set);
+    if (status == 0) {
+        out->keys = sc_alloc((size_t)(set->count ? set->count : 1), sizeof *out->keys);
+        for (int k = 0; k < set->count; k++)
+            scg_key_format(&set->keys[k], out->keys[k].text, sizeof out->keys[k].text);
+        out->count = set->count;
     }
+    free(set->keys);
     return status;
 }
 
@@ -338,7 +349,9 @@ static int dump_ir(const gen_keys *set)
     for (int k = 0; k < set->count; k++) {
         scg_program *prog = NULL;
         sc_error err = {0};
-        if (scg_compile_stages(&set->keys[k], print_stage, NULL, &prog, &err) != SC_OK) {
+        scg_key key;
+        if (scg_key_parse(set->keys[k].text, &key, &err) != SC_OK ||
+            scg_compile_stages(&key, print_stage, NULL, &prog, &err) != SC_OK) {
             cli_report(&err);
             failures++;
         }
@@ -386,7 +399,9 @@ int cmd_gen(int argc, char **argv)
     int failures = 0;
     for (int k = 0; k < set.count; k++) {
         sc_error err = {0};
-        if (scg_generate(&set.keys[k], &gens[k], &err) != SC_OK) {
+        scg_key key;
+        if (scg_key_parse(set.keys[k].text, &key, &err) != SC_OK ||
+            scg_generate(&key, &gens[k], &err) != SC_OK) {
             cli_report(&err);
             failures++;
         }

@@ -42,9 +42,10 @@ int cli_report(const struct sc_error *err);
 /* Key selection shared by gen and audit (cmd_gen.c). */
 /* Help text of the KEYS options. */
 extern const char gen_keys_usage[];
-struct scg_key;
+struct sc_key;
 typedef struct gen_keys {
-    struct scg_key *keys;   /* distinct, in order of first appearance */
+    struct sc_key *keys;    /* canonical texts, distinct, in order of first
+                               appearance */
     int count;
 } gen_keys;
 /* Takes the KEYS options out of argv, compacting the others (from argv[1])
