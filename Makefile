@@ -53,7 +53,7 @@ $(BUILD)/examples/%.o:          INC = $(INC_API)
 # the public include paths (a use of an internal header is a compile
 # error); the others still see everything until they are ported.
 CLI_PUBLIC = main.c cli.c options.c cmd_diff.c cmd_info.c cmd_eval.c cmd_convert.c cmd_ref.c \
-             cmd_render.c cmd_audit.c
+             cmd_render.c cmd_audit.c cmd_gen.c
 $(patsubst %.c,$(BUILD)/examples/splinecast/%.o,$(CLI_PUBLIC)): INC = -Iruntime -Igen/base
 $(BUILD)/tests/%.o:             INC = $(INC_API) -Itests -Iexamples/splinecast
 

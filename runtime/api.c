@@ -277,6 +277,39 @@ int sc_update_surface(sc_scene_id scene, const sc_surface_desc *desc, sc_error *
 
 /* ---- keys and generation ---- */
 
+/* A key's text parsed, err naming the key when it is not one. */
+static int parse_key(const char *text, scg_key *key, sc_error *err)
+{
+    if (scg_key_parse(text, key, err) == SC_OK)
+        return SC_OK;
+    if (err && !err->key[0])
+        snprintf(err->key, sizeof err->key, "%s", text);
+    return SC_FAIL;
+}
+
+/* What `like` gives where the desc left zeros. Its ertN is what the
+ * programs do; each ertN is sc_key_ert of exactly one termination, so the
+ * option that gives it back is found, not guessed. */
+static int like_options(const char *like, sc_key_options *opts, sc_error *err)
+{
+    scg_key key;
+    if (parse_key(like, &key, err) != SC_OK)
+        return SC_FAIL;
+    opts->nurbs_direct |= key.kind == SCG_PATCH_NURBS;
+    if (!opts->max_iters)
+        opts->max_iters = key.max_iters;
+    if (!opts->tol_milli)
+        opts->tol_milli = key.tol_milli;
+    if (!opts->start)
+        opts->start = key.start;
+    if (!opts->outputs)
+        opts->outputs = key.outputs;
+    for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_MANUAL_BOTH; t++)
+        if (sc_key_ert((sc_ray_termination)t) == key.ert)
+            opts->termination = (sc_ray_termination)t;
+    return SC_OK;
+}
+
 static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error *err)
 {
     memset(opts, 0, sizeof *opts);
@@ -302,7 +335,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->termination = desc->termination;
     opts->outputs = desc->outputs;
     opts->skip_undrawable = desc->skip_undrawable != 0;
-    return SC_OK;
+    return desc->like ? like_options(desc->like, opts, err) : SC_OK;
 }
 
 int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *keys,
@@ -324,17 +357,96 @@ int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *key
     return status;
 }
 
+int sc_query_surface_key(sc_scene_id scene, int surface, const sc_keys_desc *desc, sc_key *out,
+                         sc_error *err)
+{
+    static const sc_keys_desc defaults = {0};
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    if (!s || !scene_surface(scene, surface, err))
+        return SC_FAIL;
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    sc_key_options opts;
+    if (key_options(desc ? desc : &defaults, &opts, err) != SC_OK ||
+        sc_surface_drawable(&s->scene, surface, err) != SC_OK)
+        return SC_FAIL;
+    scg_key key;
+    sc_surface_key(&s->scene.surfaces[surface], &opts, &key);
+    scg_key_format(&key, out->text, sizeof out->text);
+    return SC_OK;
+}
+
 int sc_check_key(const char *key, sc_error *err)
 {
     if (!key)
         return sc_api_invalid(err, "key", PROBLEM_NULL, NULL);
     scg_key parsed;
-    if (scg_key_parse(key, &parsed, err) != SC_OK || scg_key_check(&parsed, err) != SC_OK) {
+    if (parse_key(key, &parsed, err) != SC_OK)
+        return SC_FAIL;
+    if (scg_key_check(&parsed, err) != SC_OK) {
         if (err && !err->key[0])
             snprintf(err->key, sizeof err->key, "%s", key);
         return SC_FAIL;
     }
     return SC_OK;
+}
+
+int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err)
+{
+    static const sc_key_desc defaults = {0};
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    if (!desc)
+        desc = &defaults;
+    if (sc_api_check_int(desc->deg_u, 0, SCG_MAX_DEGREE, "sc_key_desc.deg_u", err) ||
+        sc_api_check_int(desc->deg_v, 0, SCG_MAX_DEGREE, "sc_key_desc.deg_v", err) ||
+        sc_api_check_int(desc->rational, 0, 2, "sc_key_desc.rational", err) ||
+        sc_api_check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_key_desc.max_iters", err))
+        return SC_FAIL;
+    scg_key key;
+    if (desc->like) {
+        if (parse_key(desc->like, &key, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        /* The key sc_surface_key gives such a patch under default options. */
+        scg_key_default(&key, SCG_PATCH_BEZIER, 3, 3);
+        key.ert = sc_key_ert(SC_TERMINATION_DEFAULT);
+        key.outputs = SC_KEY_DEFAULT_OUTPUTS;
+    }
+    if (desc->deg_u || desc->deg_v) {
+        key.deg_u = desc->deg_u ? desc->deg_u : key.deg_u;
+        key.deg_v = desc->deg_v ? desc->deg_v : key.deg_v;
+        if (key.eval == SCG_EVAL_LOOP)
+            key.eval = SCG_EVAL_DC;
+    }
+    if (desc->rational)
+        key.rational = desc->rational == 1;
+    if (desc->max_iters)
+        key.max_iters = desc->max_iters;
+    /* Only now: like may be out's own text. */
+    memset(out, 0, sizeof *out);
+    scg_key_format(&key, out->text, sizeof out->text);
+    return SC_OK;
+}
+
+static void print_stage(const char *stage, const scg_program *prog, void *user)
+{
+    fprintf(user, "# after %s\n", stage);
+    scg_dump_ir(user, prog);
+}
+
+int sc_dump_ir(const char *key, FILE *out, sc_error *err)
+{
+    if (!key || !out)
+        return sc_api_invalid(err, key ? "out" : "key", PROBLEM_NULL, NULL);
+    scg_key parsed;
+    scg_program *prog = NULL;
+    if (parse_key(key, &parsed, err) != SC_OK)
+        return SC_FAIL;
+    int status = scg_compile_stages(&parsed, print_stage, out, &prog, err);
+    if (prog)
+        scg_program_free(prog);
+    return status;
 }
 
 static char *copy_text(const scg_text *t, size_t *size)

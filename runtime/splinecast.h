@@ -186,6 +186,11 @@ typedef struct sc_keys_desc {
                                   above SC_MAX_DEGREE) gets no key and a
                                   warning through the logger, instead of
                                   failing the call */
+    const char *like;          /* a key whose evaluation form (nurbs or
+                                  Bezier), start, iterations, tolerance,
+                                  early ray termination (its ertN as it is)
+                                  and outputs the keys take where the fields
+                                  above are zero (`gen --like`) */
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of
@@ -193,8 +198,32 @@ typedef struct sc_keys_desc {
 int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *keys,
                         int capacity, int *count, sc_error *err);
 
+/* The key one surface is drawn with; fails for a surface no program can
+ * draw, saying why. */
+int sc_query_surface_key(sc_scene_id scene, int surface, const sc_keys_desc *desc, sc_key *out,
+                         sc_error *err);
+
 /* Parses a key and checks that the compiler can build it. */
 int sc_check_key(const char *key, sc_error *err);
+
+/* A key made from another. Zero means "as in like". */
+typedef struct sc_key_desc {
+    const char *like;          /* NULL: the key of a polynomial, untrimmed
+                                  bicubic patch under sc_keys_desc's zeros */
+    int deg_u, deg_v;          /* 1 … SC_MAX_DEGREE; the generic program's
+                                  keys (loop) become unrolled ones (dc) */
+    int rational;              /* 1: rational, 2: polynomial */
+    int max_iters;             /* 1 … SC_MAX_ITERS */
+} sc_key_desc;
+
+/* Parses like (sc_check_key says whether the result can be built), changes
+ * what the desc gives and writes the canonical text: with a zero desc,
+ * the canonical form of like. like may be out's own text. */
+int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err);
+
+/* Prints the key's IR listing after it is built and after every
+ * optimisation pass that changed it (`gen --dump-ir`). */
+int sc_dump_ir(const char *key, FILE *out, sc_error *err);
 
 /* Figures of one generated stage, as a line of `splinecast audit` shows
  * them (docs/audit.md). */

@@ -300,3 +300,64 @@ TEST(api_cli_audit_lines_and_compare)
     CHECK_CONTAINS(err.message, "already audited on line 2");
     CHECK_INT(sc_compare_audits(NULL, &a, stdout, &err), SC_FAIL);
 }
+
+TEST(api_cli_keys_made_and_per_surface)
+{
+    sc_error err = {0};
+    sc_key key;
+    /* Zero desc: the documented default key; then varied as gen --family. */
+    CHECK_INT(sc_make_key(NULL, &key, &err), SC_OK);
+    CHECK_STR(key.text, "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    const char *generic = "bezdyn-poly-loop-trim0-newton-mid-it4-tol0.25-ert0-out.shade";
+    sc_key_desc desc = {.like = generic, .deg_u = 5, .deg_v = 2, .rational = 1, .max_iters = 9};
+    CHECK_INT(sc_make_key(&desc, &key, &err), SC_OK);
+    CHECK_STR(key.text, "bez5x2-rat-dc-trim0-newton-mid-it9-tol0.25-ert0-out.shade");
+    CHECK_INT(sc_make_key(&(sc_key_desc){.like = key.text, .rational = 2}, &key, &err), SC_OK);
+    CHECK_STR(key.text, "bez5x2-poly-dc-trim0-newton-mid-it9-tol0.25-ert0-out.shade");
+    CHECK_INT(sc_make_key(&(sc_key_desc){.like = "bez3x3"}, &key, &err), SC_FAIL);
+    CHECK_STR(err.key, "bez3x3");
+    CHECK_INT(sc_make_key(&(sc_key_desc){.deg_u = 17}, &key, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "sc_key_desc.deg_u is out of range: 17");
+
+    /* Per surface, with like's options: as sc_query_scene_keys with the
+     * same desc, ertN taken as it is. */
+    sc_scene_id scene;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    sc_keys_desc like = {.like = generic, .max_iters = 3};
+    CHECK_INT(sc_query_surface_key(scene, 5, &like, &key, &err), SC_OK);
+    CHECK_STR(key.text, "bez3x3-poly-dc-trim0-newton-mid-it3-tol0.25-ert0-out.shade");
+    sc_key all[2];
+    int n;
+    CHECK_INT(sc_query_scene_keys(scene, &like, all, 2, &n, &err), SC_OK);
+    CHECK_INT(n, 1);
+    CHECK_STR(all[0].text, key.text);
+    CHECK_INT(sc_query_surface_key(scene, 32, NULL, &key, &err), SC_FAIL);
+    CHECK_INT(sc_query_surface_key(scene, 0, &(sc_keys_desc){.like = "x"}, &key, &err), SC_FAIL);
+    sc_destroy_scene(scene);
+    sc_shutdown();
+}
+
+TEST(api_cli_dump_ir_and_save_text)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/api_dump.txt", test_tmpdir());
+    FILE *out = fopen(path, "w+");
+    CHECK(out != NULL);
+    sc_error err = {0};
+    CHECK_INT(sc_dump_ir("bez1x1-poly-dc-trim0-newton-cp-it2-tol0.05-ert0-out.shade", out, &err),
+              SC_OK);
+    fclose(out);
+    char *text = test_read_file(path);
+    CHECK(text != NULL);
+    CHECK(text && !strncmp(text, "# after ", 8));
+    free(text);
+    CHECK_INT(sc_dump_ir("nope", stdout, &err), SC_FAIL);
+
+    snprintf(path, sizeof path, "%s/api_saved.txt", test_tmpdir());
+    CHECK_INT(sc_save_text(path, "abc\n", 4, &err), SC_OK);
+    text = test_read_file(path);
+    CHECK_STR(text, "abc\n");
+    free(text);
+    CHECK_INT(sc_save_text("/nonexistent/dir/x.txt", "a", 1, &err), SC_FAIL);
+    CHECK_STR(err.file, "/nonexistent/dir/x.txt");
+}

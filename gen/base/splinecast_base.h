@@ -51,6 +51,10 @@ void sc_set_log_level(sc_log_level level);
  * compile_ms, …) are taken with, for a program's own timings beside them. */
 double sc_now(void);
 
+/* Writes `size` bytes to path through a temporary file beside it, renamed
+ * into place: the file appears whole or not at all. */
+int sc_save_text(const char *path, const char *text, size_t size, sc_error *err);
+
 #ifdef __cplusplus
 }
 #endif
