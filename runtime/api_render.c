@@ -187,7 +187,7 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
         return SC_FAIL;
     /* The context's cache: sc_make_program on the renderer's keys returns
      * the very programs it draws with. */
-    internal.programs = c->programs;
+    internal.programs = desc && desc->own_programs ? NULL : c->programs;
     renderer_object *r = sc_alloc(1, sizeof *r);
     r->context = c;
     r->scene = s;

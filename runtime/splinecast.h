@@ -337,6 +337,10 @@ typedef struct sc_renderer_desc {
     int batch_hulls;           /* hulls per batch in the manual termination
                                   modes (a batch sees the hits of those
                                   before it) and per hybrid bucket (32) */
+    int own_programs;          /* 1: programs of the renderer's own, compiled
+                                  for it and not shared with the context's
+                                  cache, so that compile_ms measures
+                                  compiling them (benchmarks) */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data

@@ -251,6 +251,17 @@ TEST(api_cli_draw_then_read_frame)
     CHECK_STR(fa.camera, fb.camera);
     CHECK_INT((int)fa.reference.rays, 0);
     CHECK_INT(sc_read_frame((sc_renderer_id){0}, &none, &err), SC_FAIL);
+    /* A renderer of the same scene shares the context's program; one with
+     * programs of its own compiles it again. */
+    sc_renderer_id shared, own;
+    sc_renderer_info si, oi;
+    CHECK_INT(sc_make_renderer(ctx, scene, NULL, &shared, &err), SC_OK);
+    CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.own_programs = 1}, &own, &err),
+              SC_OK);
+    CHECK_INT(sc_query_renderer_info(shared, &si, &err), SC_OK);
+    CHECK_INT(sc_query_renderer_info(own, &oi, &err), SC_OK);
+    CHECK(oi.compile_ms > si.compile_ms);
+    CHECK_INT(sc_draw(own, &view, &err), SC_OK);
     CHECK_INT(sc_draw(r, &(sc_camera_desc){.text = "bad"}, &err), SC_FAIL);
     sc_destroy_frame(a);
     sc_destroy_frame(b);

@@ -67,12 +67,6 @@ static int parse_size(const char *text, int *w, int *h)
     return 1;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 int cmd_render(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
@@ -204,9 +198,7 @@ int cmd_render(int argc, char **argv)
         }
         times[f] = 1e3 * (sc_now() - t0);
     }
-    qsort(times, (size_t)frames, sizeof(double), compare_double);
-    double frame_ms = frames % 2 ? times[frames / 2]
-                                 : 0.5 * (times[frames / 2 - 1] + times[frames / 2]);
+    double frame_ms = cli_median(times, frames);
     if (sc_read_frame(renderer, &frame, &err) != SC_OK ||
         sc_save_aov(frame, aov_path, &err) != SC_OK) {
         cli_report(&err);

@@ -33,6 +33,8 @@ int cli_wants_help(int argc, char **argv);
 /* Prints "splinecast NAME: message" to stderr and returns 2 (bad usage). */
 int cli_usage_error(const char *name, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+/* The median of n > 0 values (sorted in place): frame times. */
+double cli_median(double *values, int n);
 /* The AOV file written beside an image: "out.png" -> "out.aov". */
 void cli_aov_path(const char *image_path, char *buf, size_t size);
 /* Prints a library error as "file:line: message" to stderr; returns 1. */

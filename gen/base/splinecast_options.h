@@ -82,6 +82,15 @@ typedef enum sc_hull_order {
     SC_HULL_ORDER_HYBRID           /* depth buckets, by program in a bucket */
 } sc_hull_order;
 
+/* What the zeros of early ray termination, the draw order and batch_hulls
+ * mean, chosen by measurement (docs/speed.md, `splinecast bench --ert,
+ * --order, --batch`). The renderer and the keys of a scene share the termination,
+ * so that `info`, `gen --scene` and `make shaders` name the programs
+ * `render` compiles. */
+#define SC_DEFAULT_TERMINATION SC_TERMINATION_MANUAL
+#define SC_RENDER_DEFAULT_ORDER SC_HULL_ORDER_HYBRID
+#define SC_RENDER_DEFAULT_BATCH_HULLS 32
+
 /* Where the GL context comes from. */
 typedef enum sc_backend {
     SC_BACKEND_DEFAULT = 0,    /* EGL, falling back to OSMesa */
