@@ -28,7 +28,7 @@ DEB_PACKAGES = build-essential pkg-config libpng-dev libqhull-dev glslang-dev gl
 # include paths of the layers it may use and no others, so that a header
 # included across a layer it must not see is a compile error: gen/ sees
 # only gen/ and gen/base/; the runtime's folders see the folders below them;
-# only the command line and the tests see everything.
+# only the tests see everything.
 INC_BASE      = -Igen/base
 INC_GEN       = -Igen $(INC_BASE)
 INC_MODEL     = -Iruntime/model $(INC_BASE)
@@ -49,13 +49,15 @@ $(BUILD)/runtime/prepare/%.o:   INC = $(INC_PREPARE)
 $(BUILD)/runtime/reference/%.o: INC = $(INC_REFERENCE)
 $(BUILD)/runtime/gl/%.o:        INC = $(INC_GL)
 $(BUILD)/runtime/%.o:           INC = $(INC_API)
-$(BUILD)/examples/%.o:          INC = $(INC_API)
-# The command line is being moved onto the installed headers alone, so that
-# it uses the library as any program would: the files listed here see only
-# the public include paths (a use of an internal header is a compile
-# error); the others still see everything until they are ported.
-CLI_PUBLIC = main.c cli.c options.c cmd_diff.c
-$(patsubst %.c,$(BUILD)/examples/splinecast/%.o,$(CLI_PUBLIC)): INC = -Iruntime -Igen/base
+# The command line and the example programs use the library as any program
+# would: they see only the paths of the installed headers (splinecast.h and
+# the two it includes), so that a use of an internal header is a compile
+# error. Two programs measure internals no public call reaches and still
+# see everything: the compiler benchmark (IR sizes and pass times) and
+# `bench --trim-table` (scenes built in memory, packed trim pieces).
+$(BUILD)/examples/%.o:          INC = -Iruntime -Igen/base
+INTERNAL_EXAMPLES = examples/bench_compiler.c examples/splinecast/bench_trim.c
+$(patsubst %.c,$(BUILD)/%.o,$(INTERNAL_EXAMPLES)): INC = $(INC_API)
 $(BUILD)/tests/%.o:             INC = $(INC_API) -Iruntime/terrain -Itests -Iexamples/splinecast
 
 RUNTIME_SRC  = $(wildcard runtime/*.c runtime/*/*.c)
@@ -68,8 +70,10 @@ SCENE_FILES  = examples/scenes/teapot32.bpt
 LIB_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(RUNTIME_SRC) $(GEN_SRC)) \
            $(BUILD)/embedded_templates.o $(BUILD)/embedded_scenes.o
 CLI_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
-# The tests also check the command line's spellings of the options.
-TEST_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC)) $(BUILD)/examples/splinecast/options.o
+# The tests also check the command line's spellings of the options and
+# its file names.
+TEST_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC)) $(BUILD)/examples/splinecast/options.o \
+           $(BUILD)/examples/splinecast/cli.o
 
 LIB  = $(BUILD)/libsplinecast.a
 CLI  = $(BUILD)/splinecast

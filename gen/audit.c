@@ -143,18 +143,17 @@ void scg_audit_format(const scg_audit_line *line, char *buf, size_t size)
              v[SCG_AUDIT_BYTES]);
 }
 
-void scg_audit_format_kinds(const scg_program *prog, const char *key, FILE *out)
+void scg_audit_format_kinds(const scg_program *prog, const char *key, scg_text *out)
 {
     int counts[SCG_OP_COUNT];
     scg_audit_count_ops(prog, counts);
-    fprintf(out, "  %s - FS by kind:", key);
+    scg_text_printf(out, "%s - FS by kind:", key);
     const char *sep = " ";
     for (int op = 0; op < SCG_OP_COUNT; op++)
         if (counts[op]) {
-            fprintf(out, "%s%s %d", sep, scg_op_name((scg_op)op), counts[op]);
+            scg_text_printf(out, "%s%s %d", sep, scg_op_name((scg_op)op), counts[op]);
             sep = ", ";
         }
-    fprintf(out, "\n");
 }
 
 int scg_audit_parse(const char *text, scg_audit_line *line, sc_error *err)
@@ -210,20 +209,27 @@ static const scg_audit_line *find_line(const scg_audit_line *lines, int count,
     return NULL;
 }
 
-int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_error *err)
+int scg_audit_read(const char *name, const char *text, size_t size, scg_audit_line **lines,
+                   int *count, sc_error *err)
 {
     *lines = NULL;
     *count = 0;
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return sc_fail(err, path, 0, "cannot open the audit file");
     int cap = 0, line_no = 0, status = SC_OK;
-    int *line_of = NULL;      /* file line of each audit line, for messages */
-    char text[1024];
-    while (fgets(text, sizeof text, f)) {
+    int *line_of = NULL;      /* input line of each audit line, for messages */
+    char line_text[1024];
+    size_t at = 0;
+    while (at < size) {
+        const char *start = text + at;
+        const char *newline = memchr(start, '\n', size - at);
+        size_t len = newline ? (size_t)(newline - start) : size - at;
+        at += len + (newline != NULL);
         line_no++;
-        if (text[0] == '#' || text[0] == ' ' || text[0] == '\t' || text[0] == '\n' ||
-            text[0] == '\r')
+        if (len >= sizeof line_text)
+            len = sizeof line_text - 1;
+        memcpy(line_text, start, len);
+        line_text[len] = 0;
+        if (line_text[0] == '#' || line_text[0] == ' ' || line_text[0] == '\t' ||
+            line_text[0] == 0 || line_text[0] == '\r')
             continue;
         if (*count == cap) {
             cap = cap ? 2 * cap : 64;
@@ -231,8 +237,8 @@ int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_erro
             line_of = sc_realloc(line_of, (size_t)cap, sizeof *line_of);
         }
         scg_audit_line *line = &(*lines)[*count];
-        if (scg_audit_parse(text, line, err) != SC_OK) {
-            snprintf(err->file, sizeof err->file, "%s", path);
+        if (scg_audit_parse(line_text, line, err) != SC_OK) {
+            snprintf(err->file, sizeof err->file, "%s", name);
             err->line = line_no;
             status = SC_FAIL;
             break;
@@ -241,7 +247,7 @@ int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_erro
          * be counted twice in its totals. */
         const scg_audit_line *first = find_line(*lines, *count, line);
         if (first) {
-            status = sc_fail(err, path, line_no, "%s %s already audited on line %d", line->key,
+            status = sc_fail(err, name, line_no, "%s %s already audited on line %d", line->key,
                              scg_stage_audit_name(line->stage), line_of[first - *lines]);
             break;
         }
@@ -249,7 +255,6 @@ int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_erro
         (*count)++;
     }
     free(line_of);
-    fclose(f);
     if (status != SC_OK) {
         free(*lines);
         *lines = NULL;

@@ -15,6 +15,7 @@
 
 #include "glslang_check.h"
 #include "ir.h"
+#include "template.h"
 
 /* The metrics of an audit line, in the order printed; lower is better. */
 typedef enum scg_audit_metric {
@@ -63,17 +64,21 @@ void scg_audit_fill(scg_audit_line *line, const char *key, scg_stage stage,
 
 /* The line as printed, without a newline. */
 void scg_audit_format(const scg_audit_line *line, char *buf, size_t size);
-/* "  KEY - FS by kind: add 12, mul 30, …" (only kinds present). */
-void scg_audit_format_kinds(const scg_program *prog, const char *key, FILE *out);
+/* "KEY - FS by kind: add 12, mul 30, …" (only kinds present), appended
+ * to out without a newline; `audit -v` prints it indented. */
+void scg_audit_format_kinds(const scg_program *prog, const char *key, scg_text *out);
 
 /* Parses one printed line. Returns SC_OK, or SC_FAIL (err filled) for a
  * line that is not an audit line. */
 int scg_audit_parse(const char *text, scg_audit_line *line, sc_error *err);
 
-/* Reads a saved audit: audit lines, skipping blank lines, lines starting
- * with '#' and the indented by-kind lines of -v. A malformed line fails
- * with file:line. *lines is malloc'd. */
-int scg_audit_read(const char *path, scg_audit_line **lines, int *count, sc_error *err);
+/* Parses a saved audit, `size` bytes of text that `name` names in
+ * messages (the compiler opens no files: the caller reads it): audit
+ * lines, skipping blank lines, lines starting with '#' and the indented
+ * by-kind lines of -v. A malformed line fails with name:line. *lines is
+ * malloc'd. */
+int scg_audit_read(const char *name, const char *text, size_t size, scg_audit_line **lines,
+                   int *count, sc_error *err);
 
 /* Summary of a comparison, for callers and tests. */
 typedef struct scg_audit_totals {

@@ -19,8 +19,8 @@
 #include "sc_base.h"
 #include "splinecast_options.h"
 
-#define SCG_MAX_DEGREE 16     /* highest degree in either direction */
-#define SCG_MAX_ITERS 64
+#define SCG_MAX_DEGREE SC_MAX_DEGREE /* highest degree in either direction */
+#define SCG_MAX_ITERS SC_MAX_ITERS
 #define SCG_MAX_TRIM_ITERS SC_MAX_TRIM_ITERS /* cap on clipping iterations per crossing */
 #define SCG_DEFAULT_TRIM_ITERS 16
 #define SCG_KEY_MAX 128       /* buffer size for a formatted key */

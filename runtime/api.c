@@ -97,8 +97,43 @@ int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err)
     }
     for (int i = 0; i < sc->nskipped; i++)
         info->skipped += sc->skipped[i].count;
+    info->skipped_kinds = sc->nskipped;
+    info->dropped_loops = sc->dropped_loops;
     sc_scene_bounds(sc, info->lo, info->hi);
     return SC_OK;
+}
+
+int sc_query_scene_skipped(sc_scene_id scene, int index, sc_skipped_info *info,
+                           sc_error *err)
+{
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    if (!s)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    if (index < 0 || index >= s->scene.nskipped)
+        return sc_api_invalid(err, "index", PROBLEM_RANGE, "%d (0 to %d)", index,
+                              s->scene.nskipped - 1);
+    const sc_skipped *k = &s->scene.skipped[index];
+    _Static_assert(sizeof info->type == sizeof k->type && sizeof info->reason == sizeof k->reason,
+                   "public and internal skipped records hold the same texts");
+    memset(info, 0, sizeof *info);
+    memcpy(info->type, k->type, sizeof info->type);
+    memcpy(info->reason, k->reason, sizeof info->reason);
+    info->count = k->count;
+    return SC_OK;
+}
+
+int sc_save_obj(sc_scene_id scene, const char *path, sc_error *err)
+{
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    if (!s)
+        return SC_FAIL;
+    if (!path)
+        return sc_api_invalid(err, "path", PROBLEM_NULL, NULL);
+    if (!has_extension(path, ".obj"))
+        return sc_api_invalid(err, "path", PROBLEM_RANGE, "'%s' (a name ending in .obj)", path);
+    return sc_write_obj(path, &s->scene, err);
 }
 
 /* ---- surfaces ---- */
@@ -128,6 +163,34 @@ int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
                               .nv = surf->nv, .rational = surf->rational != 0,
                               .trim_loops = surf->nloops};
     snprintf(info->name, sizeof info->name, "%s", surf->name);
+    for (int l = 0; l < surf->nloops; l++)
+        info->trim_curves += surf->loops[l].ncurves;
+    sc_surface_domain(surf, &info->u_min, &info->u_max, &info->v_min, &info->v_max);
+    return SC_OK;
+}
+
+int sc_eval_surface(sc_scene_id scene, int surface, double u, double v, sc_surface_point *out,
+                    sc_error *err)
+{
+    const sc_surface *surf = scene_surface(scene, surface, err);
+    if (!surf)
+        return SC_FAIL;
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    memset(out, 0, sizeof *out);
+    double u0, u1, v0, v1;
+    sc_surface_domain(surf, &u0, &u1, &v0, &v1);
+    if (!(u >= u0 && u <= u1 && v >= v0 && v <= v1))
+        return sc_api_invalid(err, "(u, v)", PROBLEM_RANGE,
+                              "(%.17g, %.17g) (u in [%.17g, %.17g], v in [%.17g, %.17g])", u, v,
+                              u0, u1, v0, v1);
+    sc_surface_eval_world(surf, u, v, out->point, out->du, out->dv);
+    if (sc_surface_normal(surf, u, v, out->normal) == 0) {
+        sc_xform_normal(surf->xform, out->normal, out->normal);
+        out->has_normal = 1;
+    } else {
+        memset(out->normal, 0, sizeof out->normal);
+    }
     return SC_OK;
 }
 
@@ -214,6 +277,39 @@ int sc_update_surface(sc_scene_id scene, const sc_surface_desc *desc, sc_error *
 
 /* ---- keys and generation ---- */
 
+/* A key's text parsed, err naming the key when it is not one. */
+static int parse_key(const char *text, scg_key *key, sc_error *err)
+{
+    if (scg_key_parse(text, key, err) == SC_OK)
+        return SC_OK;
+    if (err && !err->key[0])
+        snprintf(err->key, sizeof err->key, "%s", text);
+    return SC_FAIL;
+}
+
+/* What `like` gives where the desc left zeros. Its ertN is what the
+ * programs do; each ertN is sc_key_ert of exactly one termination, so the
+ * option that gives it back is found, not guessed. */
+static int like_options(const char *like, sc_key_options *opts, sc_error *err)
+{
+    scg_key key;
+    if (parse_key(like, &key, err) != SC_OK)
+        return SC_FAIL;
+    opts->nurbs_direct |= key.kind == SCG_PATCH_NURBS;
+    if (!opts->max_iters)
+        opts->max_iters = key.max_iters;
+    if (!opts->tol_milli)
+        opts->tol_milli = key.tol_milli;
+    if (!opts->start)
+        opts->start = key.start;
+    if (!opts->outputs)
+        opts->outputs = key.outputs;
+    for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_MANUAL_BOTH; t++)
+        if (sc_key_ert((sc_ray_termination)t) == key.ert)
+            opts->termination = (sc_ray_termination)t;
+    return SC_OK;
+}
+
 static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error *err)
 {
     memset(opts, 0, sizeof *opts);
@@ -238,7 +334,8 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->start = desc->start;
     opts->termination = desc->termination;
     opts->outputs = desc->outputs;
-    return SC_OK;
+    opts->skip_undrawable = desc->skip_undrawable != 0;
+    return desc->like ? like_options(desc->like, opts, err) : SC_OK;
 }
 
 int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *keys,
@@ -260,17 +357,96 @@ int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *key
     return status;
 }
 
+int sc_query_surface_key(sc_scene_id scene, int surface, const sc_keys_desc *desc, sc_key *out,
+                         sc_error *err)
+{
+    static const sc_keys_desc defaults = {0};
+    scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
+    if (!s || !scene_surface(scene, surface, err))
+        return SC_FAIL;
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    sc_key_options opts;
+    if (key_options(desc ? desc : &defaults, &opts, err) != SC_OK ||
+        sc_surface_drawable(&s->scene, surface, err) != SC_OK)
+        return SC_FAIL;
+    scg_key key;
+    sc_surface_key(&s->scene.surfaces[surface], &opts, &key);
+    scg_key_format(&key, out->text, sizeof out->text);
+    return SC_OK;
+}
+
 int sc_check_key(const char *key, sc_error *err)
 {
     if (!key)
         return sc_api_invalid(err, "key", PROBLEM_NULL, NULL);
     scg_key parsed;
-    if (scg_key_parse(key, &parsed, err) != SC_OK || scg_key_check(&parsed, err) != SC_OK) {
+    if (parse_key(key, &parsed, err) != SC_OK)
+        return SC_FAIL;
+    if (scg_key_check(&parsed, err) != SC_OK) {
         if (err && !err->key[0])
             snprintf(err->key, sizeof err->key, "%s", key);
         return SC_FAIL;
     }
     return SC_OK;
+}
+
+int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err)
+{
+    static const sc_key_desc defaults = {0};
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    if (!desc)
+        desc = &defaults;
+    if (sc_api_check_int(desc->deg_u, 0, SCG_MAX_DEGREE, "sc_key_desc.deg_u", err) ||
+        sc_api_check_int(desc->deg_v, 0, SCG_MAX_DEGREE, "sc_key_desc.deg_v", err) ||
+        sc_api_check_int(desc->rational, 0, 2, "sc_key_desc.rational", err) ||
+        sc_api_check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_key_desc.max_iters", err))
+        return SC_FAIL;
+    scg_key key;
+    if (desc->like) {
+        if (parse_key(desc->like, &key, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        /* The key sc_surface_key gives such a patch under default options. */
+        scg_key_default(&key, SCG_PATCH_BEZIER, 3, 3);
+        key.ert = sc_key_ert(SC_TERMINATION_DEFAULT);
+        key.outputs = SC_KEY_DEFAULT_OUTPUTS;
+    }
+    if (desc->deg_u || desc->deg_v) {
+        key.deg_u = desc->deg_u ? desc->deg_u : key.deg_u;
+        key.deg_v = desc->deg_v ? desc->deg_v : key.deg_v;
+        if (key.eval == SCG_EVAL_LOOP)
+            key.eval = SCG_EVAL_DC;
+    }
+    if (desc->rational)
+        key.rational = desc->rational == 1;
+    if (desc->max_iters)
+        key.max_iters = desc->max_iters;
+    /* Only now: like may be out's own text. */
+    memset(out, 0, sizeof *out);
+    scg_key_format(&key, out->text, sizeof out->text);
+    return SC_OK;
+}
+
+static void print_stage(const char *stage, const scg_program *prog, void *user)
+{
+    fprintf(user, "# after %s\n", stage);
+    scg_dump_ir(user, prog);
+}
+
+int sc_dump_ir(const char *key, FILE *out, sc_error *err)
+{
+    if (!key || !out)
+        return sc_api_invalid(err, key ? "out" : "key", PROBLEM_NULL, NULL);
+    scg_key parsed;
+    scg_program *prog = NULL;
+    if (parse_key(key, &parsed, err) != SC_OK)
+        return SC_FAIL;
+    int status = scg_compile_stages(&parsed, print_stage, out, &prog, err);
+    if (prog)
+        scg_program_free(prog);
+    return status;
 }
 
 static char *copy_text(const scg_text *t, size_t *size)
@@ -286,7 +462,8 @@ static void fill_audit(sc_shader_audit *audit, const scg_generated *gen, scg_sta
 {
     scg_audit_line line;
     int fragment = stage == SCG_STAGE_FRAGMENT;
-    scg_audit_fill(&line, gen->key, stage, fragment ? gen->program : NULL,
+    /* Keys share vertex programs: a vertex line names its program. */
+    scg_audit_fill(&line, fragment ? gen->key : gen->vertex_name, stage, fragment ? gen->program : NULL,
                    fragment ? &gen->fragment_check : &gen->vertex_check,
                    scg_text_str(fragment ? &gen->fragment : &gen->vertex));
     audit->inst = line.value[SCG_AUDIT_INST];
@@ -321,6 +498,11 @@ int sc_generate_glsl(const sc_glsl_desc *desc, sc_glsl *out, sc_error *err)
     if (desc->audit) {
         fill_audit(&out->vertex_audit, &gen, SCG_STAGE_VERTEX);
         fill_audit(&out->fragment_audit, &gen, SCG_STAGE_FRAGMENT);
+        scg_text kinds = {0};
+        scg_audit_format_kinds(gen.program, gen.key, &kinds);
+        size_t size;
+        out->ir_kinds = copy_text(&kinds, &size);
+        scg_text_free(&kinds);
     }
     scg_generated_free(&gen);
     return SC_OK;
@@ -332,5 +514,30 @@ void sc_free_glsl(sc_glsl *glsl)
         return;
     free(glsl->vertex);
     free(glsl->fragment);
+    free(glsl->ir_kinds);
     memset(glsl, 0, sizeof *glsl);
+}
+
+int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
+                      sc_error *err)
+{
+    const sc_audit_text *texts[2] = {before, after};
+    const char *what[2] = {"before", "after"};
+    for (int k = 0; k < 2; k++)
+        if (!texts[k] || !texts[k]->name || (!texts[k]->text && texts[k]->size))
+            return sc_api_invalid(err, what[k], PROBLEM_NULL, NULL);
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    scg_audit_line *lines[2] = {NULL, NULL};
+    int count[2] = {0, 0};
+    for (int k = 0; k < 2; k++)
+        if (scg_audit_read(texts[k]->name, texts[k]->text, texts[k]->size, &lines[k], &count[k],
+                           err) != SC_OK) {
+            free(lines[0]);
+            return SC_FAIL;
+        }
+    scg_audit_compare(out, lines[0], count[0], lines[1], count[1], NULL);
+    free(lines[0]);
+    free(lines[1]);
+    return SC_OK;
 }

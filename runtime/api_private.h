@@ -20,6 +20,7 @@
 #include "gl_render.h"
 #include "imgdiff.h"
 #include "io.h"
+#include "nurbs.h"
 #include "programs.h"
 #include "refcast.h"
 #include "scene_keys.h"
@@ -101,8 +102,10 @@ typedef struct renderer_object {
 
 typedef struct frame_object {
     sc_image rgba;
+    int opaque;             /* shaded from AOVs, every pixel drawn: saved as RGB */
     sc_aov aov;
     double render_ms;
+    sc_reference_stats reference;
 } frame_object;
 
 /* The context whose GL calls are current, so that switching costs a call

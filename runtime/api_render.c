@@ -188,7 +188,7 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
         return SC_FAIL;
     /* The context's cache: sc_make_program on the renderer's keys returns
      * the very programs it draws with. */
-    internal.programs = c->programs;
+    internal.programs = desc && desc->own_programs ? NULL : c->programs;
     renderer_object *r = sc_alloc(1, sizeof *r);
     r->context = c;
     r->scene = s;
@@ -250,6 +250,10 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .gpu_bytes = stats.gpu_bytes,
         .uploaded_bytes = stats.bytes_uploaded,
         .compile_ms = stats.compile_ms,
+        .draw_calls = stats.draw_calls,
+        .program_switches = stats.program_switches,
+        .culled_hulls = stats.culled_hulls,
+        .readbacks = stats.readbacks,
     };
     return SC_OK;
 }
@@ -293,6 +297,12 @@ static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_cam
     return SC_OK;
 }
 
+int sc_check_camera(const sc_camera_desc *camera, sc_error *err)
+{
+    sc_camera cam;
+    return make_camera(camera, NULL, &cam, err);
+}
+
 static void expand_to_rgba(const sc_image *rgb, sc_image *rgba)
 {
     sc_image_alloc(rgba, rgb->width, rgb->height, 4);
@@ -313,28 +323,30 @@ static int add_frame(frame_object *f, sc_frame_id *out, sc_error *err)
     return SC_FAIL;
 }
 
-int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id *out,
-              sc_error *err)
+int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err)
 {
-    if (!out)
-        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
-    out->id = 0;
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     sc_camera cam;
     if (!r || make_camera(camera, &r->scene->scene, &cam, err) != SC_OK ||
         sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
+    return sc_renderer_draw(r->renderer, &cam, err);
+}
+
+/* The frame of the renderer's last draw; render_ms is the caller's. */
+static int read_frame(renderer_object *r, double render_ms, sc_frame_id *out, sc_error *err)
+{
+    if (sc_api_make_current(r->context, err) != SC_OK)
+        return SC_FAIL;
     frame_object *f = sc_alloc(1, sizeof *f);
-    double t0 = sc_now();
     sc_image image = {0};
-    if (sc_renderer_draw(r->renderer, &cam, err) != SC_OK ||
-        sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
+    if (sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
         sc_image_free(&image);
         sc_aov_free(&f->aov);
         free(f);
         return SC_FAIL;
     }
-    f->render_ms = 1e3 * (sc_now() - t0);
+    f->render_ms = render_ms;
     if (image.channels == 4) {
         f->rgba = image;
     } else {
@@ -342,6 +354,29 @@ int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id
         sc_image_free(&image);
     }
     return add_frame(f, out, err);
+}
+
+int sc_read_frame(sc_renderer_id renderer, sc_frame_id *out, sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    return r ? read_frame(r, 0, out, err) : SC_FAIL;
+}
+
+int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id *out,
+              sc_error *err)
+{
+    if (!out)
+        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
+    out->id = 0;
+    double t0 = sc_now();
+    if (sc_draw(renderer, camera, err) != SC_OK)
+        return SC_FAIL;
+    /* sc_draw found the handle valid. */
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, NULL);
+    return read_frame(r, 1e3 * (sc_now() - t0), out, err);
 }
 
 int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
@@ -360,9 +395,15 @@ int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
     if (sc_refcast_prepare(&s->scene, &rc, err) != SC_OK)
         return SC_FAIL;
     frame_object *f = sc_alloc(1, sizeof *f);
-    sc_refcast_options opt = {.threads = desc ? desc->threads : 0};
+    sc_refcast_options opt = {0};
+    if (desc) {
+        opt.threads = desc->threads;
+        opt.progress = desc->progress;
+        opt.progress_user = desc->progress_user;
+    }
     double t0 = sc_now();
-    int status = sc_refcast_render(rc, &cam, &opt, &f->aov, NULL, err);
+    sc_refcast_stats stats;
+    int status = sc_refcast_render(rc, &cam, &opt, &f->aov, &stats, err);
     sc_refcast_free(rc);
     if (status != SC_OK) {
         sc_aov_free(&f->aov);
@@ -370,8 +411,17 @@ int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
         return SC_FAIL;
     }
     f->render_ms = 1e3 * (sc_now() - t0);
+    f->reference = (sc_reference_stats){
+        .seconds = stats.seconds,
+        .rays = stats.rays,
+        .hits = stats.hits,
+        .subdivisions = stats.subdivisions,
+        .over_budget = stats.over_budget,
+        .threads = stats.threads,
+    };
     sc_image rgb;
     sc_shade_aov(&f->aov, &s->scene, &rgb);
+    f->opaque = 1;
     expand_to_rgba(&rgb, &f->rgba);
     sc_image_free(&rgb);
     return add_frame(f, out, err);
@@ -394,6 +444,7 @@ int sc_load_frame(const char *aov_path, sc_frame_id *out, sc_error *err)
     }
     sc_image rgb;
     sc_shade_aov(&f->aov, NULL, &rgb);
+    f->opaque = 1;
     expand_to_rgba(&rgb, &f->rgba);
     sc_image_free(&rgb);
     return add_frame(f, out, err);
@@ -430,7 +481,9 @@ int sc_query_frame_info(sc_frame_id frame, sc_frame_info *info, sc_error *err)
         .normal = a->normal,
         .iters = a->has_iters ? a->iters : NULL,
         .render_ms = f->render_ms,
+        .reference = f->reference,
     };
+    sc_camera_format(&a->camera, info->camera, sizeof info->camera);
     memcpy(info->eye, a->camera.eye, sizeof info->eye);
     memcpy(info->target, a->camera.target, sizeof info->target);
     return SC_OK;
@@ -443,7 +496,17 @@ int sc_save_png(sc_frame_id frame, const char *path, sc_error *err)
         return SC_FAIL;
     if (!path)
         return sc_api_invalid(err, "path", PROBLEM_NULL, NULL);
-    return sc_png_write(path, &f->rgba, err);
+    if (!f->opaque)
+        return sc_png_write(path, &f->rgba, err);
+    /* The alpha of a shaded frame says nothing: the PNG of `ref` is RGB. */
+    sc_image rgb;
+    size_t n = (size_t)f->rgba.width * (size_t)f->rgba.height;
+    sc_image_alloc(&rgb, f->rgba.width, f->rgba.height, 3);
+    for (size_t p = 0; p < n; p++)
+        memcpy(rgb.pixels + 3 * p, f->rgba.pixels + 4 * p, 3);
+    int status = sc_png_write(path, &rgb, err);
+    sc_image_free(&rgb);
+    return status;
 }
 
 int sc_save_aov(sc_frame_id frame, const char *path, sc_error *err)

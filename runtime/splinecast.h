@@ -27,6 +27,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "splinecast_base.h"
 #include "splinecast_options.h"   /* the options' enums: sc_start, sc_show, … */
@@ -71,10 +72,28 @@ typedef struct sc_scene_info {
     int trimmed_surfaces;
     int max_degree;          /* highest surface degree in either direction */
     int skipped;             /* entities the reader did not turn into geometry */
+    int skipped_kinds;       /* kinds of them: sc_query_scene_skipped's range */
+    int dropped_loops;       /* trim loops removed by validation */
     double lo[3], hi[3];     /* world-space bounding box of the control points */
 } sc_scene_info;
 
 int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);
+
+/* One kind of entity the reader skipped, counted (`info`'s `skipped` line). */
+typedef struct sc_skipped_info {
+    char type[32];           /* e.g. "polygon", "iges-406" */
+    int count;
+    char reason[96];         /* one word or a few joined by '-' */
+} sc_skipped_info;
+
+/* Kind `index` (0 to sc_scene_info.skipped_kinds - 1) of what was skipped. */
+int sc_query_scene_skipped(sc_scene_id scene, int index, sc_skipped_info *info,
+                           sc_error *err);
+
+/* Writes the scene as Wavefront OBJ free-form surfaces (path must end in
+ * .obj; trim loops as curv2, transforms baked in) and a .mtl of its colours
+ * beside it (the same name ending in .mtl). Never half-written. */
+int sc_save_obj(sc_scene_id scene, const char *path, sc_error *err);
 
 /* ---- surfaces --------------------------------------------------------- */
 
@@ -85,6 +104,8 @@ typedef struct sc_surface_info {
     int nu, nv;                /* control points along u and v */
     int rational;
     int trim_loops;
+    int trim_curves;           /* curves over all trim loops */
+    double u_min, u_max, v_min, v_max;  /* the parameter domain */
 } sc_surface_info;
 
 int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
@@ -95,6 +116,20 @@ int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
  * before its transform), `weights` 1 each. Either may be NULL. */
 int sc_query_surface_points(sc_scene_id scene, int surface, double *points, double *weights,
                             int count, sc_error *err);
+
+/* A surface at one parameter pair, in world space (its transform applied). */
+typedef struct sc_surface_point {
+    double point[3];
+    double du[3], dv[3];       /* first partial derivatives */
+    double normal[3];          /* unit; the limit normal at collapsed edges */
+    int has_normal;            /* 0 where the surface is degenerate: normal
+                                  is then zero */
+} sc_surface_point;
+
+/* Evaluates a surface at (u, v), which must lie in its domain
+ * (sc_surface_info's u_min … v_max). */
+int sc_eval_surface(sc_scene_id scene, int surface, double u, double v, sc_surface_point *out,
+                    sc_error *err);
 
 /* New control points for one surface: same degrees, counts, knots and
  * trims. Zero means default: NULL points or weights keep the current
@@ -147,6 +182,15 @@ typedef struct sc_keys_desc {
                                   termination (manual: keys say ert1) */
     unsigned outputs;          /* SC_OUTPUT_* bits (SC_OUTPUT_SHADE |
                                   SC_OUTPUT_AOV) */
+    int skip_undrawable;       /* 1: a surface no program can draw (a degree
+                                  above SC_MAX_DEGREE) gets no key and a
+                                  warning through the logger, instead of
+                                  failing the call */
+    const char *like;          /* a key whose evaluation form (nurbs or
+                                  Bezier), start, iterations, tolerance,
+                                  early ray termination (its ertN as it is)
+                                  and outputs the keys take where the fields
+                                  above are zero (`gen --like`) */
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of
@@ -154,8 +198,32 @@ typedef struct sc_keys_desc {
 int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *keys,
                         int capacity, int *count, sc_error *err);
 
+/* The key one surface is drawn with; fails for a surface no program can
+ * draw, saying why. */
+int sc_query_surface_key(sc_scene_id scene, int surface, const sc_keys_desc *desc, sc_key *out,
+                         sc_error *err);
+
 /* Parses a key and checks that the compiler can build it. */
 int sc_check_key(const char *key, sc_error *err);
+
+/* A key made from another. Zero means "as in like". */
+typedef struct sc_key_desc {
+    const char *like;          /* NULL: the key of a polynomial, untrimmed
+                                  bicubic patch under sc_keys_desc's zeros */
+    int deg_u, deg_v;          /* 1 … SC_MAX_DEGREE; the generic program's
+                                  keys (loop) become unrolled ones (dc) */
+    int rational;              /* 1: rational, 2: polynomial */
+    int max_iters;             /* 1 … SC_MAX_ITERS */
+} sc_key_desc;
+
+/* Parses like (sc_check_key says whether the result can be built), changes
+ * what the desc gives and writes the canonical text: with a zero desc,
+ * the canonical form of like. like may be out's own text. */
+int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err);
+
+/* Prints the key's IR listing after it is built and after every
+ * optimisation pass that changed it (`gen --dump-ir`). */
+int sc_dump_ir(const char *key, FILE *out, sc_error *err);
 
 /* Figures of one generated stage, as a line of `splinecast audit` shows
  * them (docs/audit.md). */
@@ -168,7 +236,9 @@ typedef struct sc_shader_audit {
     long bytes;                /* GLSL size */
     int register_bound;        /* M + 2N for orders M >= N (Pabst et al. 4.2);
                                   0 when the degrees are not fixed */
-    char line[256];            /* "KEY - FS: N inst, N spirv-inst, …" */
+    char line[256];            /* "KEY - FS: N inst, N spirv-inst, …"; the
+                                  vertex stage's is named by its vertex
+                                  program: "NAME - VS: …" */
 } sc_shader_audit;
 
 /* Zero means default, except the key, which is required. */
@@ -185,12 +255,30 @@ typedef struct sc_glsl {
     char *vertex, *fragment;   /* GLSL 4.50 core, NUL-terminated */
     size_t vertex_size, fragment_size;
     sc_shader_audit vertex_audit, fragment_audit;  /* zero unless desc->audit */
+    char *ir_kinds;            /* with desc->audit: "KEY - FS by kind: add 12,
+                                  mul 30, …", the optimised IR's
+                                  instructions by kind; else NULL */
 } sc_glsl;
 
 /* Builds, optimises, emits and validates both stages of a key (no GL
  * needed). A rejected program fails with the key and the offending line. */
 int sc_generate_glsl(const sc_glsl_desc *desc, sc_glsl *out, sc_error *err);
 void sc_free_glsl(sc_glsl *glsl);
+
+/* A saved audit (the lines of `splinecast audit`) in memory; name names it
+ * in messages. */
+typedef struct sc_audit_text {
+    const char *name;
+    const char *text;
+    size_t size;
+} sc_audit_text;
+
+/* Prints to out what got better and worse per metric from one audit to
+ * the other, the shaders added and removed, and totals over the shaders
+ * both hold (`splinecast audit --compare`, docs/audit.md). A line that is
+ * not an audit line, or a shader audited twice, fails with name:line. */
+int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
+                      sc_error *err);
 
 /* ---- GL contexts and runtime specialization ---------------------------- */
 
@@ -256,6 +344,10 @@ typedef struct sc_renderer_desc {
                                   with the message a real GL_OUT_OF_MEMORY
                                   gives ("out of GPU memory: the scene needs
                                   N bytes of GPU data (…)"). 0: no budget */
+    int own_programs;          /* 1: programs of the renderer's own, compiled
+                                  for it and not shared with the context's
+                                  cache, so that compile_ms measures
+                                  compiling them (benchmarks) */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data
@@ -278,6 +370,13 @@ typedef struct sc_renderer_info {
                                   the last sc_update_surface: patch data and
                                   hull vertices (and colours when made) */
     double compile_ms;         /* generating, validating, compiling, linking */
+    /* Of the last frame: */
+    int draw_calls;
+    int program_switches;      /* glUseProgram calls */
+    int culled_hulls;          /* hulls not drawn: behind the hits so far at
+                                  every pixel they cover (manual modes) */
+    int readbacks;             /* reads of the nearest distances so far
+                                  (manual modes) */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
@@ -293,13 +392,26 @@ typedef struct sc_camera_desc {
                                   target and fovy_deg */
 } sc_camera_desc;
 
+/* Checks a view without a scene: its text parses, its size is in range,
+ * and eye and target, when given, differ. */
+int sc_check_camera(const sc_camera_desc *camera, sc_error *err);
+
 /* Draws one frame, waits for it and reads it back: the image of the view
- * and its AOVs, with iteration counts. */
+ * and its AOVs, with iteration counts. sc_draw followed by sc_read_frame. */
 int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id *out,
               sc_error *err);
+/* Draws one frame and waits for it, reading nothing back: what a frame
+ * costs, for timing. */
+int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err);
+/* The image and AOVs of the renderer's last frame (sc_draw first). */
+int sc_read_frame(sc_renderer_id renderer, sc_frame_id *out, sc_error *err);
 
 typedef struct sc_reference_desc {
     int threads;               /* 0: one per online core */
+    /* Called with the fraction of rows done (about every 10 %), from one
+     * thread at a time; NULL for silence. */
+    void (*progress)(double fraction, void *user);
+    void *progress_user;
 } sc_reference_desc;
 
 /* The CPU reference of the same view: double-precision object-space
@@ -312,6 +424,15 @@ int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
 /* Reads an AOV file (docs/aov-format.md); its colour is a grey shading. */
 int sc_load_frame(const char *aov_path, sc_frame_id *out, sc_error *err);
 void sc_destroy_frame(sc_frame_id frame);
+
+/* How the CPU reference went. */
+typedef struct sc_reference_stats {
+    double seconds;            /* wall time of the ray casting */
+    long rays, hits;
+    long subdivisions;         /* sub-patch splits over all rays */
+    long over_budget;          /* rays whose search was cut short: normally 0 */
+    int threads;
+} sc_reference_stats;
 
 /* Pointers into the frame, valid until it is destroyed. Per pixel, row 0 at
  * the top, index j * width + i. */
@@ -326,11 +447,16 @@ typedef struct sc_frame_info {
     const float *normal;       /* 3 per pixel, unit, facing the viewer */
     const float *iters;        /* iterations; NULL for reference frames */
     double render_ms;          /* drawing and reading back, or the reference */
+    char camera[192];          /* "EX,EY,EZ,TX,TY,TZ,FOVY" with 17 digits:
+                                  parses back to the same view */
+    sc_reference_stats reference;  /* zero unless from sc_render_reference */
 } sc_frame_info;
 
 int sc_query_frame_info(sc_frame_id frame, sc_frame_info *info, sc_error *err);
 
-/* Written to a temporary file and renamed: never half-written. */
+/* Written to a temporary file and renamed: never half-written. The PNG of
+ * a GPU frame is RGBA; that of a reference or loaded frame, which covers
+ * every pixel, is RGB. */
 int sc_save_png(sc_frame_id frame, const char *path, sc_error *err);
 int sc_save_aov(sc_frame_id frame, const char *path, sc_error *err);
 

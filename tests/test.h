@@ -112,6 +112,8 @@ const char *test_root(const char *rel);
 #define TEST_TEAPOT32 test_root("examples/scenes/teapot32.bpt")
 /* Writes text to tmpdir/name and returns the path (static rotating buffer). */
 const char *test_write_tmp(const char *name, const char *text);
+/* The whole file, NUL-terminated and malloc'd; NULL when it cannot be read. */
+char *test_read_file(const char *path);
 /* Deterministic random numbers in [0, 1). */
 double test_rand(unsigned long long *state);
 

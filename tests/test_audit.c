@@ -232,11 +232,11 @@ TEST(audit_command)
     CHECK_CONTAINS(out, "\n  bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade - FS by kind: ");
     char path[512];
     snprintf(path, sizeof path, "%s", test_write_tmp("old.audit", out));
-    free(out);
     scg_audit_line *lines;
     int count;
     sc_error err = {0};
-    CHECK_INT(scg_audit_read(path, &lines, &count, &err), SC_OK);
+    CHECK_INT(scg_audit_read(path, out, strlen(out), &lines, &count, &err), SC_OK);
+    free(out);
     /* Two fragment programs and their one shared vertex program; the -v
      * lines are skipped by the reader. */
     CHECK_INT(count, 3);

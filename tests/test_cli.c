@@ -6,6 +6,8 @@
 
 #include "test.h"
 
+#include "commands.h"
+
 TEST(cli_top_level_help)
 {
     char cmd[1024], *out = NULL;
@@ -100,4 +102,14 @@ TEST(cli_render_refuses_undrawable_surface)
         struct stat st;
         CHECK(stat(path, &st) != 0);
     }
+}
+
+/* The AOV file `ref` and `render` write beside their image. */
+TEST(cli_aov_path_beside_the_image)
+{
+    char name[256];
+    cli_aov_path("out.png", name, sizeof name);
+    CHECK_STR(name, "out.aov");
+    cli_aov_path("dir.v2/out", name, sizeof name);
+    CHECK_STR(name, "dir.v2/out.aov");
 }

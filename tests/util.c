@@ -9,7 +9,7 @@
 
 #include "sc_base.h"
 
-static char *slurp(const char *path)
+char *test_read_file(const char *path)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -50,9 +50,9 @@ int test_run(const char *cmd, char **out, char **err)
     snprintf(full, sizeof full, "%s >%s 2>%s </dev/null", cmd, outp, errp);
     int status = system(full);
     if (out)
-        *out = slurp(outp);
+        *out = test_read_file(outp);
     if (err)
-        *err = slurp(errp);
+        *err = test_read_file(errp);
     if (status == -1 || !WIFEXITED(status))
         return -1;
     return WEXITSTATUS(status);

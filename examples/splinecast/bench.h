@@ -1,10 +1,11 @@
-/* bench.h — what the modes of `splinecast bench` share (cmd_bench.c): one
- * renderer timed over several frames, its figures, and the line that prints
- * them. Each mode lives in its own bench_NAME.c. */
+/* bench.h — what the modes of `splinecast bench` share: one renderer timed
+ * over several frames, its figures and the line that prints them
+ * (bench_run.c), and the early-termination / draw-order sweep
+ * (bench_order.c), which cmd_bench.c runs. */
 #ifndef SC_BENCH_H
 #define SC_BENCH_H
 
-#include "gl_render.h"
+#include "splinecast.h"
 
 typedef struct bench_result {
     double frame_ms;        /* median of the timed frames */
@@ -12,12 +13,12 @@ typedef struct bench_result {
     double iters_mean;      /* Newton iterations per covered pixel */
     double compile_ms;      /* programs, plus the warm-up frame's excess */
     long covered;
-    sc_render_stats stats;
+    sc_renderer_info stats;
 } bench_result;
 
-/* Builds a renderer, draws a warm-up frame and `frames` timed ones. */
-int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
-              const sc_camera *cam, int frames, bench_result *out, sc_error *err);
+/* Makes a renderer, draws a warm-up frame and `frames` timed ones. */
+int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
+              const sc_camera_desc *cam, int frames, bench_result *out, sc_error *err);
 /* One `bench variant=…` line on stdout; `extra` goes after the variant. */
 void bench_print(const char *variant, const char *extra, const bench_result *r);
 
@@ -39,7 +40,7 @@ int bench_sweep_parse_erts(const char *text, bench_sweep *sweep);
 int bench_sweep_parse_orders(const char *text, bench_sweep *sweep);
 int bench_sweep_parse_batches(const char *text, bench_sweep *sweep);
 /* Times every scene under every combination; returns the exit status. */
-int bench_sweep_run(const sc_gl *gl, const bench_sweep *sweep, sc_render_desc desc,
+int bench_sweep_run(sc_context_id ctx, const bench_sweep *sweep, sc_renderer_desc desc,
                     const char *camera_arg, int width, int height, int frames);
 
 #endif

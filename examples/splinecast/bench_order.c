@@ -1,6 +1,6 @@
 /* bench_order.c — `splinecast bench --ert/--order/--batch`: the figures
  * behind the early-ray-termination mode, the draw-order policy and the
- * batch size the renderer defaults to (gl_render.h). Every scene given is
+ * batch size the renderer defaults to (splinecast_options.h). Every scene given is
  * timed under every combination of the lists, each in a renderer of its
  * own; then, measured in the same run, each combination's frame time over
  * the first combination's (per scene) and the last scene's over the first
@@ -13,8 +13,6 @@
 #include "bench.h"
 #include "commands.h"
 #include "options.h"
-#include "scene_keys.h"
-#include "io.h"
 
 /* Splits a comma list into at most `max` words of `buf`; -1 when longer. */
 static int split_list(const char *text, char *buf, size_t size, char **words, int max)
@@ -94,21 +92,22 @@ int bench_sweep_parse_batches(const char *text, bench_sweep *sweep)
 }
 
 /* The words of one combination, the defaults resolved. */
-static void describe(const sc_render_desc *desc, char *buf, size_t size)
+static void describe(const sc_renderer_desc *desc, char *buf, size_t size)
 {
     snprintf(buf, size, "ert=%s order=%s batch=%d",
-             cli_termination_name(desc->ert ? desc->ert : SC_DEFAULT_TERMINATION),
+             cli_termination_name(desc->termination ? desc->termination
+                                                    : SC_DEFAULT_TERMINATION),
              cli_order_name(desc->order ? desc->order : SC_RENDER_DEFAULT_ORDER),
              desc->batch_hulls ? desc->batch_hulls : SC_RENDER_DEFAULT_BATCH_HULLS);
 }
 
 /* Combination c of the sweep's lists, ert slowest, batch fastest. */
-static void combination(const bench_sweep *sweep, int c, sc_render_desc *desc)
+static void combination(const bench_sweep *sweep, int c, sc_renderer_desc *desc)
 {
     int nb = sweep->nbatches ? sweep->nbatches : 1, no = sweep->norders ? sweep->norders : 1;
     desc->batch_hulls = sweep->nbatches ? sweep->batches[c % nb] : 0;
     desc->order = sweep->norders ? sweep->orders[c / nb % no] : SC_HULL_ORDER_DEFAULT;
-    desc->ert = sweep->nerts ? sweep->erts[c / nb / no] : SC_TERMINATION_DEFAULT;
+    desc->termination = sweep->nerts ? sweep->erts[c / nb / no] : SC_TERMINATION_DEFAULT;
 }
 
 static const char *base_name(const char *path)
@@ -117,36 +116,33 @@ static const char *base_name(const char *path)
     return slash ? slash + 1 : path;
 }
 
-int bench_sweep_run(const sc_gl *gl, const bench_sweep *sweep, sc_render_desc desc,
+int bench_sweep_run(sc_context_id ctx, const bench_sweep *sweep, sc_renderer_desc desc,
                     const char *camera_arg, int width, int height, int frames)
 {
     int combos = (sweep->nerts ? sweep->nerts : 1) * (sweep->norders ? sweep->norders : 1) *
                  (sweep->nbatches ? sweep->nbatches : 1);
-    double *frame_ms = sc_alloc((size_t)(sweep->nscenes * combos), sizeof(double));
+    double *frame_ms = calloc((size_t)(sweep->nscenes * combos), sizeof(double));
     char words[128], extra[512];
     int status = 0;
     for (int si = 0; si < sweep->nscenes && !status; si++) {
         sc_error err = {0};
-        sc_scene scene;
-        if (sc_read_scene(sweep->scenes[si], &scene, &err) != SC_OK) {
+        sc_scene_id scene;
+        if (sc_make_scene(&(sc_scene_desc){.path = sweep->scenes[si]}, &scene, &err) != SC_OK) {
             status = cli_report(&err);
             break;
         }
-        sc_camera cam;
-        sc_camera_default(&scene, &cam);
-        if (camera_arg && sc_camera_parse(camera_arg, &cam, &err) != SC_OK) {
-            sc_scene_free(&scene);
+        sc_camera_desc cam = {.width = width, .height = height, .text = camera_arg};
+        if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
+            sc_destroy_scene(scene);
             status = cli_usage_error("bench", "--camera: %s", err.message);
             break;
         }
-        cam.width = width;
-        cam.height = height;
         const char *name = base_name(sweep->scenes[si]);
         for (int c = 0; c < combos && !status; c++) {
             combination(sweep, c, &desc);
             describe(&desc, words, sizeof words);
             bench_result result;
-            if (bench_run(gl, &scene, &desc, &cam, frames, &result, &err) != SC_OK) {
+            if (bench_run(ctx, scene, &desc, &cam, frames, &result, &err) != SC_OK) {
                 status = cli_report(&err);
                 break;
             }
@@ -154,7 +150,7 @@ int bench_sweep_run(const sc_gl *gl, const bench_sweep *sweep, sc_render_desc de
             bench_print("sweep", extra, &result);
             frame_ms[si * combos + c] = result.frame_ms;
         }
-        sc_scene_free(&scene);
+        sc_destroy_scene(scene);
         for (int c = 1; c < combos && !status; c++) {
             combination(sweep, c, &desc);
             describe(&desc, words, sizeof words);

@@ -1,13 +1,12 @@
 /* cmd_audit.c — `splinecast audit`: one shader-db style line per generated
- * shader (gen/audit.h), so that a change that bloats a shader shows up as a
+ * shader (sc_generate_glsl's audits, docs/audit.md), so that a change that bloats a shader shows up as a
  * diff of two saved audits (--compare). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "audit.h"
 #include "commands.h"
-#include "emit_glsl.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast audit KEYS [-v]\n"
@@ -27,23 +26,59 @@ static const char usage[] =
     "                     totals over the shaders both hold\n"
     "\n";
 
-static int compare(const char *old_path, const char *new_path)
+/* The whole file, NUL-terminated; NULL after printing why not. */
+static char *read_file(const char *path, size_t *size)
 {
-    scg_audit_line *old_lines, *new_lines;
-    int old_count, new_count;
-    sc_error err = {0};
-    if (scg_audit_read(old_path, &old_lines, &old_count, &err) != SC_OK)
-        return cli_report(&err);
-    if (scg_audit_read(new_path, &new_lines, &new_count, &err) != SC_OK) {
-        free(old_lines);
-        return cli_report(&err);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "%s: cannot open the audit file\n", path);
+        return NULL;
     }
-    scg_audit_compare(stdout, old_lines, old_count, new_lines, new_count, NULL);
-    free(old_lines);
-    free(new_lines);
-    return 0;
+    char *text = NULL;
+    size_t len = 0, cap = 0, got;
+    do {
+        if (len + 4096 > cap) {
+            cap = 2 * cap + 4096;
+            char *grown = realloc(text, cap + 1);
+            if (!grown) {
+                fclose(f);
+                free(text);
+                fprintf(stderr, "%s: out of memory reading the audit file\n", path);
+                return NULL;
+            }
+            text = grown;
+        }
+        got = fread(text + len, 1, cap - len, f);
+        len += got;
+    } while (got > 0);
+    int failed = ferror(f);
+    fclose(f);
+    if (failed) {
+        free(text);
+        fprintf(stderr, "%s: cannot read the audit file\n", path);
+        return NULL;
+    }
+    text[len] = 0;
+    *size = len;
+    return text;
 }
 
+static int compare(const char *old_path, const char *new_path)
+{
+    sc_audit_text before = {.name = old_path}, after = {.name = new_path};
+    char *old_text = read_file(old_path, &before.size);
+    char *new_text = old_text ? read_file(new_path, &after.size) : NULL;
+    int status = 1;
+    if (new_text) {
+        before.text = old_text;
+        after.text = new_text;
+        sc_error err = {0};
+        status = sc_compare_audits(&before, &after, stdout, &err) == SC_OK ? 0 : cli_report(&err);
+    }
+    free(old_text);
+    free(new_text);
+    return status;
+}
 int cmd_audit(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
@@ -74,34 +109,27 @@ int cmd_audit(int argc, char **argv)
     }
 
     int failures = 0, nvertex = 0;
-    char (*vertex_seen)[64] = sc_alloc((size_t)set.count, sizeof *vertex_seen);
+    char (*vertex_seen)[64] = calloc(set.count > 0 ? (size_t)set.count : 1, sizeof *vertex_seen);
     for (int k = 0; k < set.count; k++) {
-        scg_generated gen;
+        sc_glsl glsl;
         sc_error err = {0};
-        if (scg_generate_counted(&set.keys[k], &gen, &err) != SC_OK) {
+        if (sc_generate_glsl(&(sc_glsl_desc){.key = set.keys[k].text, .audit = 1}, &glsl, &err) !=
+            SC_OK) {
             cli_report(&err);
             failures++;
             continue;
         }
-        scg_audit_line line;
-        char text[512];
-        scg_audit_fill(&line, gen.key, SCG_STAGE_FRAGMENT, gen.program, &gen.fragment_check,
-                       scg_text_str(&gen.fragment));
-        scg_audit_format(&line, text, sizeof text);
-        printf("%s\n", text);
+        printf("%s\n", glsl.fragment_audit.line);
         if (verbose)
-            scg_audit_format_kinds(gen.program, gen.key, stdout);
+            printf("  %s\n", glsl.ir_kinds);
         int seen = 0;
         for (int v = 0; v < nvertex; v++)
-            seen |= !strcmp(vertex_seen[v], gen.vertex_name);
+            seen |= !strcmp(vertex_seen[v], glsl.vertex_name);
         if (!seen) {
-            snprintf(vertex_seen[nvertex++], sizeof vertex_seen[0], "%s", gen.vertex_name);
-            scg_audit_fill(&line, gen.vertex_name, SCG_STAGE_VERTEX, NULL, &gen.vertex_check,
-                           scg_text_str(&gen.vertex));
-            scg_audit_format(&line, text, sizeof text);
-            printf("%s\n", text);
+            snprintf(vertex_seen[nvertex++], sizeof vertex_seen[0], "%s", glsl.vertex_name);
+            printf("%s\n", glsl.vertex_audit.line);
         }
-        scg_generated_free(&gen);
+        sc_free_glsl(&glsl);
     }
     free(vertex_seen);
     free(set.keys);

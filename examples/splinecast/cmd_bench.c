@@ -17,9 +17,6 @@
 #include "bench.h"
 #include "commands.h"
 #include "options.h"
-#include "gl_context.h"
-#include "gl_render.h"
-#include "io.h"
 
 static const char usage[] =
     "usage: splinecast bench [SCENE] [options]\n"
@@ -57,113 +54,58 @@ static const char usage[] =
     "  --trim-table           instead of a scene: the cost of trimming, trimmed /\n"
     "                         untrimmed per method (bench --trim-table --help)\n";
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
-              const sc_camera *cam, int frames, bench_result *out, sc_error *err)
-{
-    sc_renderer *r;
-    memset(out, 0, sizeof *out);
-    if (sc_renderer_create(gl, scene, desc, &r, err) != SC_OK)
-        return SC_FAIL;
-    double *times = sc_alloc((size_t)frames, sizeof(double));
-    double t0 = sc_now();
-    int status = sc_renderer_draw(r, cam, err);
-    double warm_up = 1e3 * (sc_now() - t0);
-    for (int f = 0; f < frames && status == SC_OK; f++) {
-        t0 = sc_now();
-        status = sc_renderer_draw(r, cam, err);
-        times[f] = 1e3 * (sc_now() - t0);
-    }
-    sc_aov aov;
-    if (status == SC_OK)
-        status = sc_renderer_read(r, NULL, &aov, err);
-    if (status == SC_OK) {
-        qsort(times, (size_t)frames, sizeof(double), compare_double);
-        out->frame_ms = frames % 2 ? times[frames / 2]
-                                   : 0.5 * (times[frames / 2 - 1] + times[frames / 2]);
-        double iters = 0;
-        for (int p = 0; p < aov.width * aov.height; p++)
-            if (aov.surface[p] >= 0) {
-                out->covered++;
-                iters += aov.iters[p];
-            }
-        out->iters_mean = out->covered ? iters / (double)out->covered : 0;
-        out->mpix_s = out->frame_ms > 0 ? (double)out->covered / (out->frame_ms * 1e3) : 0;
-        sc_renderer_stats(r, &out->stats);
-        out->compile_ms = out->stats.compile_ms + fmax(warm_up - out->frame_ms, 0);
-        sc_aov_free(&aov);
-    }
-    free(times);
-    sc_renderer_destroy(r);
-    return status;
-}
-
-void bench_print(const char *variant, const char *extra, const bench_result *r)
-{
-    printf("bench variant=%s%s frame_ms=%.2f mpix_s=%.2f covered=%ld iters_mean=%.3f "
-           "gpu_bytes=%zu programs=%d hulls=%d triangles=%d compile_ms=%.1f "
-           "compile_ms_per_program=%.1f draw_calls=%d program_switches=%d culled_hulls=%d "
-           "readbacks=%d\n",
-           variant, extra, r->frame_ms, r->mpix_s, r->covered, r->iters_mean,
-           r->stats.gpu_bytes, r->stats.programs, r->stats.hulls, r->stats.triangles,
-           r->compile_ms, r->stats.programs ? r->compile_ms / r->stats.programs : 0,
-           r->stats.draw_calls, r->stats.program_switches, r->stats.culled_hulls,
-           r->stats.readbacks);
-    fflush(stdout);
-}
-
 /* A bumpy Bézier patch of degree d × d over [-1, 1]², heights from a fixed
- * pseudo-random sequence, so that Newton has work at every degree. */
-static void bumpy_patch(sc_scene *scene, int d)
+ * pseudo-random sequence, so that Newton has work at every degree: a .bpt
+ * file in memory, points u fastest, written with 17 digits so that they
+ * are read back exactly. */
+static int bumpy_patch(int d, sc_scene_id *scene, sc_error *err)
 {
-    sc_scene_init(scene);
-    sc_surface *s = sc_scene_add_surface(scene);
-    sc_surface_alloc(s, d, d, d + 1, d + 1);
-    for (int k = 0; k <= 2 * d + 1; k++) {
-        s->knots_u[k] = s->knots_v[k] = k <= d ? 0 : 1;
+    size_t size = 64 + (size_t)(d + 1) * (size_t)(d + 1) * 80;
+    char *text = malloc(size);
+    if (!text) {
+        snprintf(err->message, sizeof err->message, "out of memory");
+        return SC_FAIL;
     }
+    int len = snprintf(text, size, "1\n%d %d\n", d, d);
     unsigned state = 12345u + (unsigned)d;
     for (int j = 0; j <= d; j++)
         for (int i = 0; i <= d; i++) {
-            double *cp = s->cp + 4 * (j * (d + 1) + i);
             state = state * 1103515245u + 12345u;
-            cp[0] = -1 + 2.0 * i / d;
-            cp[1] = -1 + 2.0 * j / d;
-            cp[2] = 0.3 * ((state >> 16) % 1000) / 1000.0;
-            cp[3] = 1;
+            len += snprintf(text + len, size - (size_t)len, "%.17g %.17g %.17g\n",
+                            -1 + 2.0 * i / d, -1 + 2.0 * j / d,
+                            0.3 * ((state >> 16) % 1000) / 1000.0);
         }
-    sc_surface_update_rational(s);
+    sc_scene_desc desc = {.text = text, .size = (size_t)len, .name = "bumpy.bpt"};
+    int status = sc_make_scene(&desc, scene, err);
+    free(text);
+    return status;
 }
 
-static int bench_degrees(const sc_gl *gl, sc_render_desc desc, int lo, int hi, int width,
+static int bench_degrees(sc_context_id ctx, sc_renderer_desc desc, int lo, int hi, int width,
                          int height, int frames)
 {
     bench_result lowest = {0};
     for (int d = lo; d <= hi; d++) {
-        sc_scene scene;
-        bumpy_patch(&scene, d);
-        sc_camera cam = {.eye = {0, -0.001, 3.2}, .target = {0, 0, 0.15}, .fovy_deg = 36,
-                         .width = width, .height = height};
-        bench_result unrolled, generic;
+        sc_scene_id scene;
         sc_error err = {0};
+        if (bumpy_patch(d, &scene, &err) != SC_OK)
+            return cli_report(&err);
+        sc_camera_desc cam = {.eye = {0, -0.001, 3.2}, .target = {0, 0, 0.15}, .fovy_deg = 36,
+                              .width = width, .height = height};
+        bench_result unrolled, generic;
         char extra[32];
         snprintf(extra, sizeof extra, " degree=%dx%d", d, d);
         desc.generic = 0;
         /* Above the unrolling limit the runtime itself picks the generic
          * program; the sweep wants the unrolled one at every degree. */
-        desc.unroll_max_degree = SCG_MAX_DEGREE;
-        int status = bench_run(gl, &scene, &desc, &cam, frames, &unrolled, &err);
+        desc.unroll_max_degree = SC_MAX_DEGREE;
+        int status = bench_run(ctx, scene, &desc, &cam, frames, &unrolled, &err);
         if (status == SC_OK) {
             bench_print("unrolled", extra, &unrolled);
             desc.generic = 1;
-            status = bench_run(gl, &scene, &desc, &cam, frames, &generic, &err);
+            status = bench_run(ctx, scene, &desc, &cam, frames, &generic, &err);
         }
-        sc_scene_free(&scene);
+        sc_destroy_scene(scene);
         if (status != SC_OK)
             return cli_report(&err);
         bench_print("generic", extra, &generic);
@@ -191,8 +133,8 @@ int cmd_bench(int argc, char **argv)
         return 0;
     }
     const char *scene_path = "teapot", *camera_arg = NULL;
-    sc_gl_context_desc ctx_desc = {0};
-    sc_render_desc desc = {0};
+    sc_context_desc ctx_desc = {0};
+    sc_renderer_desc desc = {0};
     int width = 1024, height = 1024, frames = 5, deg_lo = 0, deg_hi = 0, status = 0;
     sc_error err = {0};
     bench_sweep sweep = {0};
@@ -211,13 +153,13 @@ int cmd_bench(int argc, char **argv)
             camera_arg = argv[++i];
         } else if (!strcmp(a, "--iters") && next) {
             long n = strtol(argv[++i], &end, 10);
-            if (end == argv[i] || *end || n < 1 || n > SCG_MAX_ITERS)
+            if (end == argv[i] || *end || n < 1 || n > SC_MAX_ITERS)
                 return cli_usage_error("bench", "--iters takes 1 to %d, not '%s'",
-                                       SCG_MAX_ITERS, argv[i]);
+                                       SC_MAX_ITERS, argv[i]);
             desc.max_iters = (int)n;
         } else if (!strcmp(a, "--hull") && next) {
-            if (cli_hulls_parse(argv[++i], &desc.hulls.mode, &desc.hulls.divisions,
-                                &desc.hulls.tolerance, &err) != SC_OK)
+            if (cli_hulls_parse(argv[++i], &desc.hull_split, &desc.hull_divisions,
+                                &desc.hull_tolerance, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
             i++;
@@ -232,9 +174,9 @@ int cmd_bench(int argc, char **argv)
         } else if (!strcmp(a, "--degrees") && next) {
             i++;
             if (sscanf(argv[i], "%d-%d", &deg_lo, &deg_hi) != 2 || deg_lo < 1 ||
-                deg_hi < deg_lo || deg_hi > SCG_MAX_DEGREE)
+                deg_hi < deg_lo || deg_hi > SC_MAX_DEGREE)
                 return cli_usage_error("bench", "--degrees takes LO-HI within 1-%d, not '%s'",
-                                       SCG_MAX_DEGREE, argv[i]);
+                                       SC_MAX_DEGREE, argv[i]);
         } else if (!strcmp(a, "--ert") && next) {
             if ((status = bench_sweep_parse_erts(argv[++i], &sweep)) != 0)
                 return status;
@@ -257,43 +199,43 @@ int cmd_bench(int argc, char **argv)
     int sweeping = sweep.nerts || sweep.norders || sweep.nbatches;
     if (sweep.nscenes > 1 && !sweeping)
         return cli_usage_error("bench", "several scenes need --ert, --order or --batch");
-    sc_gl_context *ctx;
-    if (sc_gl_context_create(&ctx_desc, &ctx, &err) != SC_OK)
+    sc_context_id ctx;
+    sc_context_info ctx_info;
+    if (sc_make_context(&ctx_desc, &ctx, &err) != SC_OK ||
+        sc_query_context_info(ctx, &ctx_info, &err) != SC_OK) {
+        sc_destroy_context(ctx);
         return cli_report(&err);
-    fprintf(stderr, "bench: %s\n", sc_gl_context_description(ctx));
-    const sc_gl *gl = sc_gl_context_gl(ctx);
+    }
+    fprintf(stderr, "bench: %s\n", ctx_info.description);
     if (sweeping) {
         if (!sweep.nscenes)
             sweep.scenes[sweep.nscenes++] = scene_path;
-        status = bench_sweep_run(gl, &sweep, desc, camera_arg, width, height, frames);
-        sc_gl_context_destroy(ctx);
+        status = bench_sweep_run(ctx, &sweep, desc, camera_arg, width, height, frames);
+        sc_destroy_context(ctx);
         return status;
     }
     if (deg_lo) {
-        status = bench_degrees(gl, desc, deg_lo, deg_hi, width, height, frames);
-        sc_gl_context_destroy(ctx);
+        status = bench_degrees(ctx, desc, deg_lo, deg_hi, width, height, frames);
+        sc_destroy_context(ctx);
         return status;
     }
-    sc_scene scene;
-    if (sc_read_scene(scene_path, &scene, &err) != SC_OK) {
-        sc_gl_context_destroy(ctx);
+    sc_scene_id scene;
+    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK) {
+        sc_destroy_context(ctx);
         return cli_report(&err);
     }
-    sc_camera cam;
-    sc_camera_default(&scene, &cam);
+    sc_camera_desc cam = {.width = width, .height = height, .text = camera_arg};
     status = 0;
-    if (camera_arg && sc_camera_parse(camera_arg, &cam, &err) != SC_OK) {
+    if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
         status = cli_usage_error("bench", "--camera: %s", err.message);
     } else {
-        cam.width = width;
-        cam.height = height;
         bench_result specialized, generic;
-        if (bench_run(gl, &scene, &desc, &cam, frames, &specialized, &err) != SC_OK) {
+        if (bench_run(ctx, scene, &desc, &cam, frames, &specialized, &err) != SC_OK) {
             status = cli_report(&err);
         } else {
             bench_print("specialized", "", &specialized);
             desc.generic = 1;
-            if (bench_run(gl, &scene, &desc, &cam, frames, &generic, &err) != SC_OK) {
+            if (bench_run(ctx, scene, &desc, &cam, frames, &generic, &err) != SC_OK) {
                 status = cli_report(&err);
             } else {
                 bench_print("generic", "", &generic);
@@ -302,7 +244,7 @@ int cmd_bench(int argc, char **argv)
             }
         }
     }
-    sc_scene_free(&scene);
-    sc_gl_context_destroy(ctx);
+    sc_destroy_scene(scene);
+    sc_destroy_context(ctx);
     return status;
 }

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "io.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast convert SCENE -o OUT.obj\n"
@@ -37,15 +37,16 @@ int cmd_convert(int argc, char **argv)
     size_t len = strlen(out);
     if (len < 5 || strcmp(out + len - 4, ".obj"))
         return cli_usage_error("convert", "the output name must end in .obj, not '%s'", out);
-    sc_scene scene;
+    sc_scene_id scene;
+    sc_scene_info info;
     sc_error err;
-    if (sc_read_scene(scene_path, &scene, &err))
+    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
         return cli_report(&err);
-    int failed = sc_write_obj(out, &scene, &err);
-    int n = scene.nsurfaces;
-    sc_scene_free(&scene);
+    int failed = sc_query_scene_info(scene, &info, &err) != SC_OK ||
+                 sc_save_obj(scene, out, &err) != SC_OK;
+    sc_destroy_scene(scene);
     if (failed)
         return cli_report(&err);
-    printf("surfaces %d\nwrote %s\nwrote %.*s.mtl\n", n, out, (int)(len - 4), out);
+    printf("surfaces %d\nwrote %s\nwrote %.*s.mtl\n", info.surfaces, out, (int)(len - 4), out);
     return 0;
 }

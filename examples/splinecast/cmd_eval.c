@@ -8,8 +8,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "io.h"
-#include "nurbs.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast eval SCENE --surface I --uv U,V\n"
@@ -60,38 +59,48 @@ int cmd_eval(int argc, char **argv)
     if (!parse_uv(uv_arg, &u, &v))
         return cli_usage_error("eval", "--uv takes two finite numbers U,V, not '%s'", uv_arg);
 
-    sc_scene scene;
+    sc_scene_id scene;
     sc_error err;
-    if (sc_read_scene(scene_path, &scene, &err))
+    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
         return cli_report(&err);
     int status = 1;
-    if (index >= scene.nsurfaces) {
+    sc_scene_info info;
+    sc_surface_info s;
+    sc_surface_point at;
+    if (sc_query_scene_info(scene, &info, &err) != SC_OK) {
+        cli_report(&err);
+        goto done;
+    }
+    if (index >= info.surfaces) {
         fprintf(stderr, "splinecast eval: %s has %d surfaces; there is no surface %ld\n",
-                scene_path, scene.nsurfaces, index);
+                scene_path, info.surfaces, index);
         goto done;
     }
-    const sc_surface *s = &scene.surfaces[index];
-    double u0, u1, v0, v1;
-    sc_surface_domain(s, &u0, &u1, &v0, &v1);
-    if (!(u >= u0 && u <= u1 && v >= v0 && v <= v1)) {
+    if (sc_query_surface_info(scene, (int)index, &s, &err) != SC_OK) {
+        cli_report(&err);
+        goto done;
+    }
+    if (!(u >= s.u_min && u <= s.u_max && v >= s.v_min && v <= s.v_max)) {
         fprintf(stderr, "splinecast eval: (%.17g, %.17g) is outside the range of surface %ld: "
-                "u in [%.17g, %.17g], v in [%.17g, %.17g]\n", u, v, index, u0, u1, v0, v1);
+                "u in [%.17g, %.17g], v in [%.17g, %.17g]\n", u, v, index, s.u_min, s.u_max,
+                s.v_min, s.v_max);
         goto done;
     }
-    double p[3], su[3], sv[3], n[3];
-    sc_surface_eval_world(s, u, v, p, su, sv);
-    if (sc_surface_normal(s, u, v, n) != 0) {
+    if (sc_eval_surface(scene, (int)index, u, v, &at, &err) != SC_OK) {
+        cli_report(&err);
+        goto done;
+    }
+    if (!at.has_normal) {
         fprintf(stderr, "splinecast eval: surface %ld is degenerate: it has no normal at "
                 "(%.17g, %.17g)\n", index, u, v);
         goto done;
     }
-    sc_xform_normal(s->xform, n, n);
-    printf("point %.17g %.17g %.17g\n", p[0], p[1], p[2]);
-    printf("du %.17g %.17g %.17g\n", su[0], su[1], su[2]);
-    printf("dv %.17g %.17g %.17g\n", sv[0], sv[1], sv[2]);
-    printf("normal %.17g %.17g %.17g\n", n[0], n[1], n[2]);
+    printf("point %.17g %.17g %.17g\n", at.point[0], at.point[1], at.point[2]);
+    printf("du %.17g %.17g %.17g\n", at.du[0], at.du[1], at.du[2]);
+    printf("dv %.17g %.17g %.17g\n", at.dv[0], at.dv[1], at.dv[2]);
+    printf("normal %.17g %.17g %.17g\n", at.normal[0], at.normal[1], at.normal[2]);
     status = 0;
 done:
-    sc_scene_free(&scene);
+    sc_destroy_scene(scene);
     return status;
 }

@@ -10,10 +10,7 @@
 #include <sys/stat.h>
 
 #include "commands.h"
-#include "emit_glsl.h"
-#include "io.h"
-#include "key.h"
-#include "scene_keys.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast gen KEYS -o DIR [--dump-ir]\n"
@@ -50,24 +47,17 @@ const char gen_keys_usage[] =
 
 /* ---- key selection shared with `audit` ---- */
 
-/* What --like gives every key a scene's surfaces need (scene_keys.h
- * decides kind, degrees, rationality, evaluation form and trimming). */
-static void options_like(const scg_key *like, sc_key_options *opts)
-{
-    memset(opts, 0, sizeof *opts);
-    opts->nurbs_direct = like->kind == SCG_PATCH_NURBS;
-    opts->max_iters = like->max_iters;
-    opts->tol_milli = like->tol_milli;
-    opts->start = like->start;
-    opts->outputs = like->outputs;
-}
-
-static void add_key(gen_keys *set, const scg_key *key)
+static void add_key(gen_keys *set, const sc_key *key)
 {
     for (int i = 0; i < set->count; i++)
-        if (scg_key_equal(&set->keys[i], key))
-            return;
-    set->keys = sc_realloc(set->keys, (size_t)set->count + 1, sizeof *set->keys);
+        if (!strcmp(set->keys[i].text, key->text))
+            return;   /* canonical texts: equal keys, equal texts */
+    sc_key *grown = realloc(set->keys, ((size_t)set->count + 1) * sizeof *set->keys);
+    if (!grown) {
+        fprintf(stderr, "splinecast: out of memory\n");
+        exit(1);
+    }
+    set->keys = grown;
     set->keys[set->count++] = *key;
 }
 
@@ -79,7 +69,7 @@ static int parse_iters(const char *text, int *iters, int max)
     while (*p) {
         char *end;
         long v = strtol(p, &end, 10);
-        if (end == p || v < 1 || v > SCG_MAX_ITERS || n == max)
+        if (end == p || v < 1 || v > SC_MAX_ITERS || n == max)
             return -1;
         iters[n++] = (int)v;
         if (*end == ',')
@@ -91,58 +81,52 @@ static int parse_iters(const char *text, int *iters, int max)
     return n;
 }
 
-/* The keys the scene's surfaces need, each at every iteration count.
- * Returns 0, or 1 after printing why the scene could not be read. */
-static int add_scene_keys(const char *path, const scg_key *like, const int *iters, int niters,
+/* The keys the scene's surfaces need, each at every iteration count, with
+ * what --like gives (the scene decides kind, degrees, rationality,
+ * evaluation form and trimming). Returns 0, or 1 after printing why the
+ * scene could not be read or drawn (`render` refuses a surface no program
+ * draws). */
+static int add_scene_keys(const char *path, const char *like, const int *iters, int niters,
                           gen_keys *set)
 {
-    sc_scene scene;
+    sc_scene_id scene;
+    sc_scene_info info;
     sc_error err = {0};
-    if (sc_read_scene(path, &scene, &err) != SC_OK)
+    if (sc_make_scene(&(sc_scene_desc){.path = path}, &scene, &err) != SC_OK)
         return cli_report(&err);
-    sc_key_options opts;
-    options_like(like, &opts);
-    for (int s = 0; s < scene.nsurfaces; s++) {
-        /* `render` refuses such a scene: no program would draw it. */
-        if (sc_surface_drawable(&scene, s, &err) != SC_OK) {
-            sc_scene_free(&scene);
-            return cli_report(&err);
+    int status = sc_query_scene_info(scene, &info, &err);
+    for (int s = 0; s < info.surfaces && status == SC_OK; s++)
+        for (int k = 0; k < niters && status == SC_OK; k++) {
+            sc_key key;
+            sc_keys_desc desc = {.like = like, .max_iters = iters[k]};
+            status = sc_query_surface_key(scene, s, &desc, &key, &err);
+            if (status == SC_OK)
+                add_key(set, &key);
         }
-        for (int k = 0; k < niters; k++) {
-            scg_key key;
-            opts.max_iters = iters[k];
-            sc_surface_key(&scene.surfaces[s], &opts, &key);
-            /* --like names what the program does (ertN), not a renderer's
-             * termination option, so it is copied, not mapped. */
-            key.ert = like->ert;
-            add_key(set, &key);
-        }
-    }
-    sc_scene_free(&scene);
-    return 0;
+    sc_destroy_scene(scene);
+    return status == SC_OK ? 0 : cli_report(&err);
 }
 
-/* The bez keys of every degree pair in LO..HI, rational and not, each at
+/* The keys of every degree pair in LO..HI, rational and not, each at
  * every iteration count. Returns 0, or 2 after printing a usage error. */
-static int add_family_keys(const char *cmd, const char *family, const scg_key *like,
+static int add_family_keys(const char *cmd, const char *family, const char *like,
                            const int *iters, int niters, gen_keys *set)
 {
     int lo, hi, used = 0;
     if (sscanf(family, "%d..%d%n", &lo, &hi, &used) != 2 || family[used] || lo < 1 || hi < lo ||
-        hi > SCG_MAX_DEGREE)
+        hi > SC_MAX_DEGREE)
         return cli_usage_error(cmd, "--family wants LO..HI with 1 <= LO <= HI <= %d",
-                               SCG_MAX_DEGREE);
+                               SC_MAX_DEGREE);
     for (int du = lo; du <= hi; du++)
         for (int dv = lo; dv <= hi; dv++)
             for (int rational = 0; rational < 2; rational++)
                 for (int k = 0; k < niters; k++) {
-                    scg_key key = *like;
-                    key.deg_u = du;
-                    key.deg_v = dv;
-                    key.rational = rational;
-                    key.max_iters = iters[k];
-                    if (key.eval == SCG_EVAL_LOOP)
-                        key.eval = SCG_EVAL_DC;
+                    sc_key key;
+                    sc_key_desc desc = {.like = like, .deg_u = du, .deg_v = dv,
+                                        .rational = rational ? 1 : 2, .max_iters = iters[k]};
+                    sc_error err = {0};
+                    if (sc_make_key(&desc, &key, &err) != SC_OK)
+                        return cli_report(&err);
                     add_key(set, &key);
                 }
     return 0;
@@ -151,15 +135,12 @@ static int add_family_keys(const char *cmd, const char *family, const scg_key *l
 int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *first_other)
 {
     memset(set, 0, sizeof *set);
-    scg_key like;
-    scg_key_default(&like, SCG_PATCH_BEZIER, 3, 3);
-    like.ert = sc_key_ert(SC_TERMINATION_DEFAULT);
-    like.outputs = SC_KEY_DEFAULT_OUTPUTS;
-    const char *scene_path = NULL, *family = NULL;
-    int iters[SCG_MAX_ITERS], niters = 0, iters_given = 0;
-    char **given = sc_alloc((size_t)argc, sizeof *given);
+    const char *like = NULL, *scene_path = NULL, *family = NULL;
+    int iters[SC_MAX_ITERS], niters = 0, iters_given = 0;
+    char **given = calloc((size_t)argc, sizeof *given);
     int ngiven = 0, status = 0;
     sc_error err = {0};
+    sc_key like_key;
     int i = 1, kept = 1;
     while (i < argc && status == 0) {
         const char *arg = argv[i];
@@ -176,17 +157,18 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
             family = argv[i + 1];
             i += 2;
         } else if (!strcmp(arg, "--like") && i + 1 < argc) {
-            if (scg_key_parse(argv[i + 1], &like, &err) != SC_OK) {
+            if (sc_make_key(&(sc_key_desc){.like = argv[i + 1]}, &like_key, &err) != SC_OK) {
                 fprintf(stderr, "splinecast %s: --like: %s\n", cmd, err.message);
                 status = 2;
             }
+            like = like_key.text;
             i += 2;
         } else if (!strcmp(arg, "--iters") && i + 1 < argc) {
-            niters = parse_iters(argv[i + 1], iters, SCG_MAX_ITERS);
+            niters = parse_iters(argv[i + 1], iters, SC_MAX_ITERS);
             iters_given = 1;
             if (niters < 0)
                 status = cli_usage_error(cmd, "--iters wants counts 1..%d joined by ','",
-                                         SCG_MAX_ITERS);
+                                         SC_MAX_ITERS);
             i += 2;
         } else if (!strcmp(arg, "--scene") || !strcmp(arg, "--family") ||
                    !strcmp(arg, "--like") || !strcmp(arg, "--iters")) {
@@ -198,12 +180,13 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
     *first_other = kept;
     if (status == 0 && !!scene_path + !!family + (ngiven > 0) != 1)
         status = cli_usage_error(cmd, "give exactly one of --key, --scene, --family");
+    /* Without --iters, each key keeps like's count (0: as in like). */
     if (status == 0 && niters == 0)
-        iters[niters++] = like.max_iters;
+        iters[niters++] = 0;
 
     for (int g = 0; g < ngiven && status == 0; g++) {
-        scg_key key;
-        if (scg_key_parse(given[g], &key, &err) != SC_OK) {
+        sc_key key;
+        if (sc_make_key(&(sc_key_desc){.like = given[g]}, &key, &err) != SC_OK) {
             fprintf(stderr, "splinecast %s: %s\n", cmd, err.message);
             status = 2;
         } else {
@@ -211,17 +194,20 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
         }
     }
     if (status == 0 && scene_path)
-        status = add_scene_keys(scene_path, &like, iters, niters, set);
+        status = add_scene_keys(scene_path, like, iters, niters, set);
     if (status == 0 && family)
-        status = add_family_keys(cmd, family, &like, iters, niters, set);
+        status = add_family_keys(cmd, family, like, iters, niters, set);
     if (status == 0 && iters_given && ngiven > 0) {
         /* --iters with --key: every given key at every count. */
         gen_keys expanded = {0};
-        for (int g = 0; g < set->count; g++)
-            for (int k = 0; k < niters; k++) {
-                scg_key key = set->keys[g];
-                key.max_iters = iters[k];
-                add_key(&expanded, &key);
+        for (int g = 0; g < set->count && status == 0; g++)
+            for (int k = 0; k < niters && status == 0; k++) {
+                sc_key key;
+                sc_key_desc desc = {.like = set->keys[g].text, .max_iters = iters[k]};
+                if (sc_make_key(&desc, &key, &err) != SC_OK)
+                    status = cli_report(&err);
+                else
+                    add_key(&expanded, &key);
             }
         free(set->keys);
         *set = expanded;
@@ -236,22 +222,8 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
 
 /* ---- writing ---- */
 
-/* Written to a temporary name and renamed, so a reader never sees half a
- * file. */
-static int write_file(const char *path, const char *text, size_t size, sc_error *err)
-{
-    sc_out_file out;
-    if (sc_out_open(&out, path, err))
-        return SC_FAIL;
-    if (fwrite(text, 1, size, out.f) != size) {
-        sc_out_abandon(&out);
-        return sc_fail(err, path, 0, "writing failed (disk full?)");
-    }
-    return sc_out_commit(&out, err);
-}
-
 /* Creates dir and any missing parents, as mkdir -p. */
-static int ensure_dir(const char *dir, sc_error *err)
+static int ensure_dir(const char *dir)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s", dir);
@@ -261,74 +233,77 @@ static int ensure_dir(const char *dir, sc_error *err)
             continue;
         *p = 0;
         struct stat st;
-        if (stat(path, &st) != 0 && mkdir(path, 0777) != 0 && errno != EEXIST)
-            return sc_fail(err, path, 0, "cannot create the directory: %s", strerror(errno));
-        if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode))
-            return sc_fail(err, path, 0, "not a directory");
+        if (stat(path, &st) != 0 && mkdir(path, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "%s: cannot create the directory: %s\n", path, strerror(errno));
+            return 1;
+        }
+        if (stat(path, &st) != 0 || !S_ISDIR(st.st_mode)) {
+            fprintf(stderr, "%s: not a directory\n", path);
+            return 1;
+        }
         if (last)
-            return SC_OK;
+            return 0;
         *p = '/';
     }
 }
 
-static int write_outputs(const char *dir, scg_generated *gens, int count, int *files,
-                         sc_error *err)
+/* One file of the output, its `FILE BYTES` line printed once written. */
+static int write_one(const char *path, const char *text, size_t size, int *files)
 {
-    /* The longest name: DIR/KEY.frag; a longer DIR would be cut silently. */
-    if (strlen(dir) + SCG_KEY_MAX + 8 > 1024)
-        return sc_fail(err, dir, 0, "output directory name too long (at most %d characters)",
-                       1024 - SCG_KEY_MAX - 8);
-    if (ensure_dir(dir, err) != SC_OK)
-        return SC_FAIL;
-    char path[1024];
-    scg_text manifest = {0};
-    scg_text_append(&manifest, "key\tstage\tfile\tbytes\n");
-    int status = SC_OK;
-    *files = 0;
-    for (int i = 0; i < count && status == SC_OK; i++) {
-        const scg_generated *g = &gens[i];
-        size_t frag_bytes = g->fragment.len, vert_bytes = g->vertex.len;
-        const char *frag = scg_stage_extension(SCG_STAGE_FRAGMENT);
-        const char *vert = scg_stage_extension(SCG_STAGE_VERTEX);
-        scg_text_printf(&manifest, "%s\t%s\t%s.%s\t%zu\n", g->key, frag, g->key, frag,
-                        frag_bytes);
-        scg_text_printf(&manifest, "%s\t%s\t%s.%s\t%zu\n", g->key, vert, g->vertex_name, vert,
-                        vert_bytes);
-        snprintf(path, sizeof path, "%s/%s.%s", dir, g->key, frag);
-        status = write_file(path, scg_text_str(&g->fragment), frag_bytes, err);
-        if (status == SC_OK) {
-            printf("%s %zu\n", path, frag_bytes);
-            (*files)++;
-        }
-        int vertex_written = 0;
-        for (int j = 0; j < i; j++)
-            vertex_written |= !strcmp(gens[j].vertex_name, g->vertex_name);
-        if (status == SC_OK && !vertex_written) {
-            snprintf(path, sizeof path, "%s/%s.%s", dir, g->vertex_name, vert);
-            status = write_file(path, scg_text_str(&g->vertex), vert_bytes, err);
-            if (status == SC_OK) {
-                printf("%s %zu\n", path, vert_bytes);
-                (*files)++;
-            }
-        }
-    }
-    if (status == SC_OK) {
-        snprintf(path, sizeof path, "%s/manifest.tsv", dir);
-        status = write_file(path, scg_text_str(&manifest), manifest.len, err);
-        if (status == SC_OK) {
-            printf("%s %zu\n", path, manifest.len);
-            (*files)++;
-        }
-    }
-    scg_text_free(&manifest);
-    return status;
+    sc_error err = {0};
+    if (sc_save_text(path, text, size, &err) != SC_OK)
+        return cli_report(&err);
+    printf("%s %zu\n", path, size);
+    (*files)++;
+    return 0;
 }
 
-static void print_stage(const char *stage, const scg_program *prog, void *user)
+/* The file extensions are the stage names of the manifest. */
+static const char frag[] = "frag", vert[] = "vert";
+
+/* Writes every program and the manifest; returns 0 or 1 after printing why. */
+static int write_outputs(const char *dir, const sc_glsl *glsl, int count, int *files)
 {
-    (void)user;
-    printf("# after %s\n", stage);
-    scg_dump_ir(stdout, prog);
+    /* The longest name: DIR/KEY.frag; a longer DIR would be cut silently. */
+    if (strlen(dir) + SC_KEY_SIZE + 8 > 1024) {
+        fprintf(stderr, "%s: output directory name too long (at most %d characters)\n", dir,
+                1024 - SC_KEY_SIZE - 8);
+        return 1;
+    }
+    if (ensure_dir(dir))
+        return 1;
+    char path[1024];
+    char *manifest = NULL;
+    size_t manifest_size = 0;
+    FILE *m = open_memstream(&manifest, &manifest_size);
+    if (!m) {
+        fprintf(stderr, "splinecast gen: out of memory\n");
+        return 1;
+    }
+    fprintf(m, "key\tstage\tfile\tbytes\n");
+    int status = 0;
+    *files = 0;
+    for (int i = 0; i < count && status == 0; i++) {
+        const sc_glsl *g = &glsl[i];
+        fprintf(m, "%s\t%s\t%s.%s\t%zu\n", g->key, frag, g->key, frag, g->fragment_size);
+        fprintf(m, "%s\t%s\t%s.%s\t%zu\n", g->key, vert, g->vertex_name, vert, g->vertex_size);
+        snprintf(path, sizeof path, "%s/%s.%s", dir, g->key, frag);
+        status = write_one(path, g->fragment, g->fragment_size, files);
+        int vertex_written = 0;
+        for (int j = 0; j < i; j++)
+            vertex_written |= !strcmp(glsl[j].vertex_name, g->vertex_name);
+        if (status == 0 && !vertex_written) {
+            snprintf(path, sizeof path, "%s/%s.%s", dir, g->vertex_name, vert);
+            status = write_one(path, g->vertex, g->vertex_size, files);
+        }
+    }
+    fclose(m);
+    if (status == 0) {
+        snprintf(path, sizeof path, "%s/manifest.tsv", dir);
+        status = write_one(path, manifest, manifest_size, files);
+    }
+    free(manifest);
+    return status;
 }
 
 /* The IR listing of every stage of every key, for --dump-ir. */
@@ -336,14 +311,11 @@ static int dump_ir(const gen_keys *set)
 {
     int failures = 0;
     for (int k = 0; k < set->count; k++) {
-        scg_program *prog = NULL;
         sc_error err = {0};
-        if (scg_compile_stages(&set->keys[k], print_stage, NULL, &prog, &err) != SC_OK) {
+        if (sc_dump_ir(set->keys[k].text, stdout, &err) != SC_OK) {
             cli_report(&err);
             failures++;
         }
-        if (prog)
-            scg_program_free(prog);
     }
     return failures;
 }
@@ -382,11 +354,11 @@ int cmd_gen(int argc, char **argv)
         return 1;
     }
     double t0 = sc_now();
-    scg_generated *gens = sc_alloc((size_t)set.count, sizeof *gens);
+    sc_glsl *glsl = calloc(set.count > 0 ? (size_t)set.count : 1, sizeof *glsl);
     int failures = 0;
     for (int k = 0; k < set.count; k++) {
         sc_error err = {0};
-        if (scg_generate(&set.keys[k], &gens[k], &err) != SC_OK) {
+        if (sc_generate_glsl(&(sc_glsl_desc){.key = set.keys[k].text}, &glsl[k], &err) != SC_OK) {
             cli_report(&err);
             failures++;
         }
@@ -396,20 +368,17 @@ int cmd_gen(int argc, char **argv)
             set.count - failures, elapsed);
     int files = 0;
     if (!failures) {
-        sc_error err = {0};
-        if (write_outputs(dir, gens, set.count, &files, &err) != SC_OK) {
-            cli_report(&err);
+        if (write_outputs(dir, glsl, set.count, &files))
             failures++;
-        } else {
+        else
             printf("keys %d files %d\n", set.count, files);
-        }
     } else {
         fprintf(stderr, "splinecast gen: %d of %d keys failed; nothing written\n", failures,
                 set.count);
     }
     for (int k = 0; k < set.count; k++)
-        scg_generated_free(&gens[k]);
-    free(gens);
+        sc_free_glsl(&glsl[k]);
+    free(glsl);
     free(set.keys);
     return failures ? 1 : 0;
 }

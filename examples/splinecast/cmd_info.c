@@ -7,8 +7,7 @@
 #include <stdlib.h>
 
 #include "commands.h"
-#include "io.h"
-#include "scene_keys.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast info SCENE\n"
@@ -33,34 +32,42 @@ int cmd_info(int argc, char **argv)
     }
     if (argc != 2 || argv[1][0] == '-')
         return cli_usage_error("info", "expected one SCENE argument");
-    sc_scene scene;
+    sc_scene_id scene;
+    sc_scene_info info;
     sc_error err;
-    if (sc_read_scene(argv[1], &scene, &err))
+    if (sc_make_scene(&(sc_scene_desc){.path = argv[1]}, &scene, &err) != SC_OK)
         return cli_report(&err);
-    printf("surfaces %d\n", scene.nsurfaces);
-    for (int i = 0; i < scene.nsurfaces; i++) {
-        const sc_surface *s = &scene.surfaces[i];
-        int segments = 0;
-        for (int l = 0; l < s->nloops; l++)
-            segments += s->loops[l].ncurves;
-        printf("surface %d deg %d %d rational %d ctrl %d %d loops %d segments %d\n", i, s->deg_u,
-               s->deg_v, s->rational, s->nu, s->nv, s->nloops, segments);
+    int status = sc_query_scene_info(scene, &info, &err);
+    if (status == SC_OK)
+        printf("surfaces %d\n", info.surfaces);
+    for (int i = 0; i < info.surfaces && status == SC_OK; i++) {
+        sc_surface_info s;
+        status = sc_query_surface_info(scene, i, &s, &err);
+        if (status == SC_OK)
+            printf("surface %d deg %d %d rational %d ctrl %d %d loops %d segments %d\n", i,
+                   s.deg_u, s.deg_v, s.rational, s.nu, s.nv, s.trim_loops, s.trim_curves);
     }
-    for (int i = 0; i < scene.nskipped; i++)
-        printf("skipped %s %d %s\n", scene.skipped[i].type, scene.skipped[i].count,
-               scene.skipped[i].reason);
-    if (scene.dropped_loops)
-        printf("dropped_loops %d\n", scene.dropped_loops);
-    double lo[3], hi[3];
-    sc_scene_bounds(&scene, lo, hi);
-    printf("bbox %.17g %.17g %.17g %.17g %.17g %.17g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
-    char(*keys)[SCG_KEY_MAX] = NULL;
-    int nkeys = 0;
-    sc_key_options opts = {.skip_undrawable = 1};
-    int status = sc_scene_keys(&scene, &opts, &keys, &nkeys, &err);
-    for (int k = 0; k < nkeys; k++)
-        printf("key %s\n", keys[k]);
+    for (int i = 0; i < info.skipped_kinds && status == SC_OK; i++) {
+        sc_skipped_info k;
+        status = sc_query_scene_skipped(scene, i, &k, &err);
+        if (status == SC_OK)
+            printf("skipped %s %d %s\n", k.type, k.count, k.reason);
+    }
+    if (status == SC_OK && info.dropped_loops)
+        printf("dropped_loops %d\n", info.dropped_loops);
+    if (status == SC_OK)
+        printf("bbox %.17g %.17g %.17g %.17g %.17g %.17g\n", info.lo[0], info.lo[1], info.lo[2],
+               info.hi[0], info.hi[1], info.hi[2]);
+    sc_keys_desc keys_desc = {.skip_undrawable = 1};
+    /* One call, so that the warning on an undrawable surface comes once:
+     * a scene needs at most one key per surface. */
+    int nkeys = 0, capacity = info.surfaces > 0 ? info.surfaces : 1;
+    sc_key *keys = calloc((size_t)capacity, sizeof *keys);
+    if (status == SC_OK)
+        status = sc_query_scene_keys(scene, &keys_desc, keys, capacity, &nkeys, &err);
+    for (int k = 0; k < nkeys && status == SC_OK; k++)
+        printf("key %s\n", keys[k].text);
     free(keys);
-    sc_scene_free(&scene);
-    return status ? cli_report(&err) : 0;
+    sc_destroy_scene(scene);
+    return status != SC_OK ? cli_report(&err) : 0;
 }

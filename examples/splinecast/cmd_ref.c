@@ -1,15 +1,12 @@
 /* cmd_ref.c — `splinecast ref SCENE -o out.png`: the CPU reference image
- * of a scene (refcast.h), written as a shaded PNG and as the AOV file
+ * of a scene (sc_render_reference), written as a shaded PNG and as the AOV file
  * beside it that `diff` compares against. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "commands.h"
-#include "imgdiff.h"
-#include "io.h"
-#include "refcast.h"
-#include "shade.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast ref SCENE -o OUT.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ,FOVY]\n"
@@ -93,69 +90,55 @@ int cmd_ref(int argc, char **argv)
     if (!out_path)
         return cli_usage_error("ref", "expected -o OUT.png");
     char aov_path[1024];
-    sc_aov_path_for(out_path, aov_path, sizeof aov_path);
+    cli_aov_path(out_path, aov_path, sizeof aov_path);
     if (!strcmp(aov_path, out_path))
         return cli_usage_error("ref", "OUT '%s' would be overwritten by its own AOV file; "
                                "use a .png name", out_path);
 
     sc_error err = {0};
-    sc_camera cam = {.width = width, .height = height};
-    if (camera_text && sc_camera_parse(camera_text, &cam, &err) != SC_OK)
+    sc_camera_desc view = {.width = width, .height = height, .text = camera_text};
+    if (sc_check_camera(&view, &err) != SC_OK)
         return cli_usage_error("ref", "%s", err.message);
-    sc_scene scene;
-    if (sc_read_scene(scene_path, &scene, &err) != SC_OK)
+    sc_scene_id scene;
+    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
         return cli_report(&err);
-    if (!camera_text)
-        sc_camera_default(&scene, &cam);
-
-    sc_refcast *rc;
-    if (sc_refcast_prepare(&scene, &rc, &err) != SC_OK) {
-        sc_scene_free(&scene);
-        return cli_report(&err);
-    }
     double t0 = sc_now();
-    sc_refcast_options opt = {.threads = threads};
+    sc_reference_desc desc = {.threads = threads};
     if ((long)width * height > 256L * 256L) {
-        opt.progress = print_progress;
-        opt.progress_user = &t0;
+        desc.progress = print_progress;
+        desc.progress_user = &t0;
     }
-    sc_aov aov;
-    sc_refcast_stats stats;
-    int status = sc_refcast_render(rc, &cam, &opt, &aov, &stats, &err);
-    sc_refcast_free(rc);
-    if (status == SC_OK)
-        status = sc_aov_write(aov_path, &aov, &err);
+    sc_frame_id frame;
+    sc_frame_info info;
+    int status = sc_render_reference(scene, &view, &desc, &frame, &err);
+    sc_destroy_scene(scene);
+    if (status != SC_OK)
+        return cli_report(&err);
+    status = sc_save_aov(frame, aov_path, &err);
     if (status == SC_OK) {
-        sc_image img;
-        sc_shade_aov(&aov, &scene, &img);
-        status = sc_png_write(out_path, &img, &err);
-        sc_image_free(&img);
+        status = sc_save_png(frame, out_path, &err);
         if (status != SC_OK)
             remove(aov_path); /* the pair is written whole or not at all */
     }
-    if (status != SC_OK) {
-        if (aov.surface)
-            sc_aov_free(&aov);
-        sc_scene_free(&scene);
+    if (status == SC_OK)
+        status = sc_query_frame_info(frame, &info, &err);
+    sc_destroy_frame(frame);
+    if (status != SC_OK)
         return cli_report(&err);
-    }
-    char cam_text[512];
-    sc_camera_format(&cam, cam_text, sizeof cam_text);
+    const sc_reference_stats *stats = &info.reference;
     printf("ref image=%s aov=%s size=%dx%d camera=%s hit_pixels=%ld\n", out_path, aov_path, width,
-           height, cam_text, stats.hits);
+           height, info.camera, stats->hits);
     if (want_stats)
         printf("stats rays=%ld hits=%ld seconds=%.3f rays_per_s=%.0f subdivisions_per_ray=%.1f "
                "over_budget=%ld threads=%d\n",
-               stats.rays, stats.hits, stats.seconds,
-               stats.seconds > 0 ? stats.rays / stats.seconds : 0.0,
-               stats.rays ? (double)stats.subdivisions / stats.rays : 0.0, stats.over_budget,
-               stats.threads);
-    if (stats.over_budget)
+               stats->rays, stats->hits, stats->seconds,
+               stats->seconds > 0 ? stats->rays / stats->seconds : 0.0,
+               stats->rays ? (double)stats->subdivisions / stats->rays : 0.0, stats->over_budget,
+               stats->threads);
+    if (stats->over_budget)
         fprintf(stderr,
                 "splinecast ref: warning: %ld rays spent their split budget; they keep the "
                 "nearest hit found\n",
-                stats.over_budget);
-    sc_aov_free(&aov);
-    sc_scene_free(&scene);
+                stats->over_budget);
     return 0;
 }

@@ -8,11 +8,7 @@
 
 #include "commands.h"
 #include "options.h"
-#include "gl_context.h"
-#include "gl_render.h"
-#include "imgdiff.h"
-#include "io.h"
-#include "refcast.h"
+#include "splinecast.h"
 
 static const char usage[] =
     "usage: splinecast render SCENE -o OUT.png [options]\n"
@@ -71,12 +67,6 @@ static int parse_size(const char *text, int *w, int *h)
     return 1;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 int cmd_render(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
@@ -84,8 +74,8 @@ int cmd_render(int argc, char **argv)
         return 0;
     }
     const char *scene_path = NULL, *out_path = NULL, *camera_arg = NULL;
-    sc_gl_context_desc ctx_desc = {0};
-    sc_render_desc desc = {0};
+    sc_context_desc ctx_desc = {0};
+    sc_renderer_desc desc = {0};
     int width = 512, height = 512, frames = 5, with_ref = 0;
     sc_error err = {0};
     for (int i = 1; i < argc; i++) {
@@ -104,9 +94,9 @@ int cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--iters") && next) {
             char *end;
             long n = strtol(argv[++i], &end, 10);
-            if (end == argv[i] || *end || n < 1 || n > SCG_MAX_ITERS)
+            if (end == argv[i] || *end || n < 1 || n > SC_MAX_ITERS)
                 return cli_usage_error("render", "--iters takes 1 to %d, not '%s'",
-                                       SCG_MAX_ITERS, argv[i]);
+                                       SC_MAX_ITERS, argv[i]);
             desc.max_iters = (int)n;
         } else if (!strcmp(a, "--tol") && next) {
             char *end;
@@ -114,10 +104,10 @@ int cmd_render(int argc, char **argv)
             if (end == argv[i] || *end || !(tol >= 0.001) || !(tol <= 100))
                 return cli_usage_error("render", "--tol takes 0.001 to 100 pixels, not '%s'",
                                        argv[i]);
-            desc.tol_milli = (int)(tol * 1000 + 0.5);
+            desc.tolerance_px = tol;
         } else if (!strcmp(a, "--hull") && next) {
-            if (cli_hulls_parse(argv[++i], &desc.hulls.mode, &desc.hulls.divisions,
-                                &desc.hulls.tolerance, &err) != SC_OK)
+            if (cli_hulls_parse(argv[++i], &desc.hull_split, &desc.hull_divisions,
+                                &desc.hull_tolerance, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
             i++;
@@ -128,11 +118,11 @@ int cmd_render(int argc, char **argv)
             else
                 return cli_usage_error("render", "--init takes mid or cpmap, not '%s'", argv[i]);
         } else if (!strcmp(a, "--trim") && next) {
-            if (cli_trim_parse(argv[++i], &desc.trim_method, &desc.trim_iters, &err) !=
+            if (cli_trim_parse(argv[++i], &desc.trim, &desc.trim_iters, &err) !=
                 SC_OK)
                 return cli_usage_error("render", "--trim: %s", err.message);
         } else if (!strcmp(a, "--ert") && next) {
-            if (cli_termination_parse(argv[++i], &desc.ert, &err) != SC_OK)
+            if (cli_termination_parse(argv[++i], &desc.termination, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--order") && next) {
             if (cli_order_parse(argv[++i], &desc.order, &err) != SC_OK)
@@ -145,7 +135,7 @@ int cmd_render(int argc, char **argv)
                                        argv[i]);
             desc.batch_hulls = (int)n;
         } else if (!strcmp(a, "--view") && next) {
-            if (cli_show_parse(argv[++i], &desc.view, &err) != SC_OK)
+            if (cli_show_parse(argv[++i], &desc.show, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--frames") && next) {
             char *end;
@@ -164,68 +154,65 @@ int cmd_render(int argc, char **argv)
     if (!scene_path || !out_path)
         return cli_usage_error("render", "needs SCENE and -o OUT.png");
 
-    sc_scene scene;
-    if (sc_read_scene(scene_path, &scene, &err) != SC_OK)
+    sc_camera_desc view = {.width = width, .height = height, .text = camera_arg};
+    sc_scene_id scene;
+    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
         return cli_report(&err);
-    sc_camera cam;
-    sc_camera_default(&scene, &cam);
-    if (camera_arg && sc_camera_parse(camera_arg, &cam, &err) != SC_OK) {
-        sc_scene_free(&scene);
+    if (camera_arg && sc_check_camera(&view, &err) != SC_OK) {
+        sc_destroy_scene(scene);
         return cli_usage_error("render", "--camera: %s", err.message);
     }
-    cam.width = width;
-    cam.height = height;
 
     int status = 1;
-    sc_gl_context *ctx = NULL;
-    sc_renderer *renderer = NULL;
-    sc_image img = {0};
-    sc_aov aov = {0}, ref = {0};
-    double *times = sc_alloc((size_t)frames, sizeof(double));
-    if (sc_gl_context_create(&ctx_desc, &ctx, &err) != SC_OK) {
+    sc_context_id ctx = {0};
+    sc_renderer_id renderer;
+    sc_context_info ctx_info;
+    sc_renderer_info stats;
+    sc_frame_id frame = {0}, ref = {0};
+    sc_frame_info ref_info;
+    sc_comparison acc;
+    double *times = calloc((size_t)frames, sizeof(double));
+    char aov_path[1024];
+    cli_aov_path(out_path, aov_path, sizeof aov_path);
+    if (sc_make_context(&ctx_desc, &ctx, &err) != SC_OK ||
+        sc_query_context_info(ctx, &ctx_info, &err) != SC_OK) {
         cli_report(&err);
         goto done;
     }
-    fprintf(stderr, "render: %s\n", sc_gl_context_description(ctx));
-    const sc_gl *gl = sc_gl_context_gl(ctx);
-    if (sc_renderer_create(gl, &scene, &desc, &renderer, &err) != SC_OK) {
+    fprintf(stderr, "render: %s\n", ctx_info.description);
+    if (sc_make_renderer(ctx, scene, &desc, &renderer, &err) != SC_OK) {
         cli_report(&err);
         goto done;
     }
     double t0 = sc_now();
-    if (sc_renderer_draw(renderer, &cam, &err) != SC_OK) {
+    if (sc_draw(renderer, &view, &err) != SC_OK) {
         cli_report(&err);
         goto done;
     }
     double warm_up = 1e3 * (sc_now() - t0);
     for (int f = 0; f < frames; f++) {
         t0 = sc_now();
-        if (sc_renderer_draw(renderer, &cam, &err) != SC_OK) {
+        if (sc_draw(renderer, &view, &err) != SC_OK) {
             cli_report(&err);
             goto done;
         }
         times[f] = 1e3 * (sc_now() - t0);
     }
-    qsort(times, (size_t)frames, sizeof(double), compare_double);
-    double frame_ms = frames % 2 ? times[frames / 2]
-                                 : 0.5 * (times[frames / 2 - 1] + times[frames / 2]);
-    if (sc_renderer_read(renderer, &img, &aov, &err) != SC_OK) {
+    double frame_ms = cli_median(times, frames);
+    if (sc_read_frame(renderer, &frame, &err) != SC_OK ||
+        sc_save_aov(frame, aov_path, &err) != SC_OK) {
         cli_report(&err);
         goto done;
     }
-    char aov_path[1024];
-    sc_aov_path_for(out_path, aov_path, sizeof aov_path);
-    if (sc_aov_write(aov_path, &aov, &err) != SC_OK) {
-        cli_report(&err);
-        goto done;
-    }
-    if (sc_png_write(out_path, &img, &err) != SC_OK) {
+    if (sc_save_png(frame, out_path, &err) != SC_OK) {
         remove(aov_path);
         cli_report(&err);
         goto done;
     }
-    sc_render_stats stats;
-    sc_renderer_stats(renderer, &stats);
+    if (sc_query_renderer_info(renderer, &stats, &err) != SC_OK) {
+        cli_report(&err);
+        goto done;
+    }
     double compile_ms = stats.compile_ms + (warm_up > frame_ms ? warm_up - frame_ms : 0);
     printf("stats programs=%d hulls=%d triangles=%d gpu_bytes=%zu compile_ms=%.1f "
            "frame_ms=%.2f draw_calls=%d program_switches=%d culled_hulls=%d readbacks=%d\n",
@@ -233,35 +220,24 @@ int cmd_render(int argc, char **argv)
            stats.draw_calls, stats.program_switches, stats.culled_hulls, stats.readbacks);
     fflush(stdout);
     if (with_ref) {
-        sc_refcast *rc = NULL;
-        sc_refcast_stats rstats;
-        if (sc_refcast_prepare(&scene, &rc, &err) != SC_OK ||
-            sc_refcast_render(rc, &cam, NULL, &ref, &rstats, &err) != SC_OK) {
-            sc_refcast_free(rc);
+        if (sc_render_reference(scene, &view, NULL, &ref, &err) != SC_OK ||
+            sc_query_frame_info(ref, &ref_info, &err) != SC_OK) {
             cli_report(&err);
             goto done;
         }
-        sc_refcast_free(rc);
-        fprintf(stderr, "render: reference in %.2f s\n", rstats.seconds);
-        sc_accuracy acc;
-        if (sc_accuracy_compare(&ref, &aov, &acc, &err) != SC_OK) {
+        fprintf(stderr, "render: reference in %.2f s\n", ref_info.reference.seconds);
+        if (sc_compare_frames(ref, frame, &acc, &err) != SC_OK) {
             cli_report(&err);
             goto done;
         }
-        char line[512];
-        sc_accuracy_format(&acc, line, sizeof line);
-        printf("%s\n", line);
+        printf("%s\n", acc.line);
     }
     status = 0;
 done:
     free(times);
-    sc_image_free(&img);
-    if (aov.surface)
-        sc_aov_free(&aov);
-    if (ref.surface)
-        sc_aov_free(&ref);
-    sc_renderer_destroy(renderer);
-    sc_gl_context_destroy(ctx);
-    sc_scene_free(&scene);
+    sc_destroy_frame(frame);
+    sc_destroy_frame(ref);
+    sc_destroy_context(ctx);
+    sc_destroy_scene(scene);
     return status;
 }

@@ -5,6 +5,8 @@
 #ifndef SC_COMMANDS_H
 #define SC_COMMANDS_H
 
+#include <stddef.h>
+
 typedef int (*command_fn)(int argc, char **argv);
 
 typedef struct command {
@@ -31,6 +33,10 @@ int cli_wants_help(int argc, char **argv);
 /* Prints "splinecast NAME: message" to stderr and returns 2 (bad usage). */
 int cli_usage_error(const char *name, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+/* The median of n > 0 values (sorted in place): frame times. */
+double cli_median(double *values, int n);
+/* The AOV file written beside an image: "out.png" -> "out.aov". */
+void cli_aov_path(const char *image_path, char *buf, size_t size);
 /* Prints a library error as "file:line: message" to stderr; returns 1. */
 struct sc_error;
 int cli_report(const struct sc_error *err);
@@ -38,9 +44,10 @@ int cli_report(const struct sc_error *err);
 /* Key selection shared by gen and audit (cmd_gen.c). */
 /* Help text of the KEYS options. */
 extern const char gen_keys_usage[];
-struct scg_key;
+struct sc_key;
 typedef struct gen_keys {
-    struct scg_key *keys;   /* distinct, in order of first appearance */
+    struct sc_key *keys;    /* canonical texts, distinct, in order of first
+                               appearance */
     int count;
 } gen_keys;
 /* Takes the KEYS options out of argv, compacting the others (from argv[1])

@@ -184,3 +184,15 @@ void sc_out_abandon(sc_out_file *out)
     out->f = NULL;
     unlink(out->tmp);
 }
+
+int sc_save_text(const char *path, const char *text, size_t size, sc_error *err)
+{
+    sc_out_file out;
+    if (sc_out_open(&out, path, err))
+        return SC_FAIL;
+    if (fwrite(text, 1, size, out.f) != size) {
+        sc_out_abandon(&out);
+        return sc_fail(err, path, 0, "writing failed (disk full?)");
+    }
+    return sc_out_commit(&out, err);
+}

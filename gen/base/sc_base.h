@@ -52,7 +52,4 @@ int sc_out_rename(sc_out_file *out, sc_error *err);
 int sc_out_commit(sc_out_file *out, sc_error *err);
 void sc_out_abandon(sc_out_file *out);
 
-/* Monotonic clock in seconds, for progress and benchmark output. */
-double sc_now(void);
-
 #endif

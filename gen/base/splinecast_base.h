@@ -47,6 +47,14 @@ void sc_set_logger(sc_logger_fn fn, void *user);
 /* Messages below `level` are dropped by the default logger (default WARN). */
 void sc_set_log_level(sc_log_level level);
 
+/* A monotonic clock in seconds: the one the library's timings (render_ms,
+ * compile_ms, …) are taken with, for a program's own timings beside them. */
+double sc_now(void);
+
+/* Writes `size` bytes to path through a temporary file beside it, renamed
+ * into place: the file appears whole or not at all. */
+int sc_save_text(const char *path, const char *text, size_t size, sc_error *err);
+
 #ifdef __cplusplus
 }
 #endif

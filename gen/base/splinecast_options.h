@@ -16,6 +16,8 @@ extern "C" {
 /* Limits of the options' numbers: desc fields outside them are refused. */
 #define SC_MAX_TRIM_ITERS 64       /* clipping iterations per trim crossing */
 #define SC_MAX_HULL_DIVISIONS 64   /* uniform hulls: sub-patches per side */
+#define SC_MAX_ITERS 64            /* Newton iterations */
+#define SC_MAX_DEGREE 16           /* highest surface degree a program draws */
 
 /* Where Newton's method starts (keys: mid, cp, view). */
 typedef enum sc_start {
@@ -79,6 +81,15 @@ typedef enum sc_hull_order {
     SC_HULL_ORDER_BY_PROGRAM,      /* grouped by program, front to back in one */
     SC_HULL_ORDER_HYBRID           /* depth buckets, by program in a bucket */
 } sc_hull_order;
+
+/* What the zeros of early ray termination, the draw order and batch_hulls
+ * mean, chosen by measurement (docs/speed.md, `splinecast bench --ert,
+ * --order, --batch`). The renderer and the keys of a scene share the termination,
+ * so that `info`, `gen --scene` and `make shaders` name the programs
+ * `render` compiles. */
+#define SC_DEFAULT_TERMINATION SC_TERMINATION_MANUAL
+#define SC_RENDER_DEFAULT_ORDER SC_HULL_ORDER_HYBRID
+#define SC_RENDER_DEFAULT_BATCH_HULLS 32
 
 /* Where the GL context comes from. */
 typedef enum sc_backend {

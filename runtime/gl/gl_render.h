@@ -32,7 +32,7 @@ typedef struct sc_render_desc {
     int trim_iters;         /* cap on clipping iterations per trim crossing
                                (SCG_DEFAULT_TRIM_ITERS) */
     sc_ray_termination ert; /* early ray termination (SC_DEFAULT_TERMINATION,
-                               scene_keys.h) */
+                               splinecast_options.h) */
     sc_hull_order order;    /* draw order policy */
     int batch_hulls;        /* hulls per batch in the manual modes (a batch
                                reads the hits of the batches before it;
@@ -50,9 +50,6 @@ typedef struct sc_render_desc {
                                targets are not counted */
 } sc_render_desc;
 
-/* Chosen by measurement (docs/speed.md, `splinecast bench --order`). */
-#define SC_RENDER_DEFAULT_ORDER SC_HULL_ORDER_HYBRID
-#define SC_RENDER_DEFAULT_BATCH_HULLS 32
 
 typedef struct sc_render_stats {
     int programs;           /* distinct programs drawn with: one per key,

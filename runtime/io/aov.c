@@ -246,13 +246,3 @@ int sc_aov_read(const char *path, sc_aov *aov, sc_error *err)
     }
     return SC_OK;
 }
-
-void sc_aov_path_for(const char *image_path, char *buf, size_t size)
-{
-    size_t n = strlen(image_path);
-    const char *dot = strrchr(image_path, '.');
-    const char *slash = strrchr(image_path, '/');
-    if (dot && (!slash || dot > slash) && dot != image_path && (!slash || dot > slash + 1))
-        n = (size_t)(dot - image_path);
-    snprintf(buf, size, "%.*s.aov", (int)n, image_path);
-}

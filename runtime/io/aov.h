@@ -28,7 +28,5 @@ void sc_aov_free(sc_aov *aov);
 /* Written to a temporary file and renamed: nothing half-written on failure. */
 int sc_aov_write(const char *path, const sc_aov *aov, sc_error *err);
 int sc_aov_read(const char *path, sc_aov *aov, sc_error *err);
-/* The AOV file name that goes with an image: "out.png" -> "out.aov". */
-void sc_aov_path_for(const char *image_path, char *buf, size_t size);
 
 #endif

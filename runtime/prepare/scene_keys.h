@@ -15,12 +15,6 @@
  * program takes over. */
 #define SC_UNROLL_MAX_DEGREE 9
 
-/* Early ray termination unless asked otherwise, for the renderer and for
- * the keys of a scene alike, so that `info`, `gen --scene` and `make
- * shaders` name the programs `render` compiles. Chosen by measurement
- * (docs/speed.md, `splinecast bench --ert`). */
-#define SC_DEFAULT_TERMINATION SC_TERMINATION_MANUAL
-
 /* The key's ert field for the early ray termination option. The two are not
  * one concept: the key says what the program does (ert1: skip the ray
  * behind the nearest hit so far), while the option also decides what the

@@ -1,0 +1,72 @@
+/* bench_run.c — one renderer timed the way every mode of `splinecast
+ * bench` times it (a warm-up frame, then the median of the timed ones),
+ * and the `bench variant=…` line that prints its figures. A file of its
+ * own so that cmd_bench.c and bench_order.c both call it and not each
+ * other. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+#include "commands.h"
+
+int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
+              const sc_camera_desc *cam, int frames, bench_result *out, sc_error *err)
+{
+    sc_renderer_id r;
+    memset(out, 0, sizeof *out);
+    /* Each renderer compiles its programs, as a fresh process would: the
+     * compile figures are not cache hits of an earlier run. */
+    sc_renderer_desc own = *desc;
+    own.own_programs = 1;
+    if (sc_make_renderer(ctx, scene, &own, &r, err) != SC_OK)
+        return SC_FAIL;
+    double *times = calloc((size_t)frames, sizeof(double));
+    double t0 = sc_now();
+    int status = sc_draw(r, cam, err);
+    double warm_up = 1e3 * (sc_now() - t0);
+    for (int f = 0; f < frames && status == SC_OK; f++) {
+        t0 = sc_now();
+        status = sc_draw(r, cam, err);
+        times[f] = 1e3 * (sc_now() - t0);
+    }
+    sc_frame_id frame = {0};
+    sc_frame_info info;
+    if (status == SC_OK)
+        status = sc_read_frame(r, &frame, err);
+    if (status == SC_OK)
+        status = sc_query_frame_info(frame, &info, err);
+    if (status == SC_OK)
+        status = sc_query_renderer_info(r, &out->stats, err);
+    if (status == SC_OK) {
+        out->frame_ms = cli_median(times, frames);
+        double iters = 0;
+        for (int p = 0; p < info.width * info.height; p++)
+            if (info.surface[p] >= 0) {
+                out->covered++;
+                iters += info.iters[p];
+            }
+        out->iters_mean = out->covered ? iters / (double)out->covered : 0;
+        out->mpix_s = out->frame_ms > 0 ? (double)out->covered / (out->frame_ms * 1e3) : 0;
+        out->compile_ms = out->stats.compile_ms + fmax(warm_up - out->frame_ms, 0);
+    }
+    sc_destroy_frame(frame);
+    free(times);
+    sc_destroy_renderer(r);
+    return status;
+}
+
+void bench_print(const char *variant, const char *extra, const bench_result *r)
+{
+    printf("bench variant=%s%s frame_ms=%.2f mpix_s=%.2f covered=%ld iters_mean=%.3f "
+           "gpu_bytes=%zu programs=%d hulls=%d triangles=%d compile_ms=%.1f "
+           "compile_ms_per_program=%.1f draw_calls=%d program_switches=%d culled_hulls=%d "
+           "readbacks=%d\n",
+           variant, extra, r->frame_ms, r->mpix_s, r->covered, r->iters_mean,
+           r->stats.gpu_bytes, r->stats.programs, r->stats.hulls, r->stats.triangles,
+           r->compile_ms, r->stats.programs ? r->compile_ms / r->stats.programs : 0,
+           r->stats.draw_calls, r->stats.program_switches, r->stats.culled_hulls,
+           r->stats.readbacks);
+    fflush(stdout);
+}
