@@ -27,9 +27,13 @@ DEB_PACKAGES = build-essential pkg-config libpng-dev libqhull-dev glslang-dev gl
 # The layers, lowest first (docs/README.md). Each folder is compiled with the
 # include paths of the layers it may use and no others, so that a header
 # included across a layer it must not see is a compile error: gen/ sees
-# only gen/ and gen/base/; the runtime's folders see the folders below them;
-# only the tests see everything.
-INC_BASE      = -Igen/base
+# only gen/, gen/base/ and gen/include/; the runtime's folders see the
+# folders below them; only the tests see everything. The public headers are
+# alone in gen/include/ (status, errors, logging, option enums) and
+# runtime/include/ (splinecast.h), so that what sees only them sees nothing
+# internal.
+INC_PUBLIC    = -Iruntime/include -Igen/include
+INC_BASE      = -Igen/include -Igen/base
 INC_GEN       = -Igen $(INC_BASE)
 INC_MODEL     = -Iruntime/model $(INC_BASE)
 INC_IO        = -Iruntime/io $(INC_MODEL)
@@ -37,7 +41,7 @@ INC_TERRAIN   = -Iruntime/terrain $(INC_MODEL)
 INC_PREPARE   = -Iruntime/prepare $(INC_MODEL) $(INC_GEN)
 INC_REFERENCE = -Iruntime/reference $(INC_IO)
 INC_GL        = -Iruntime/gl -I$(BUILD) -Iruntime/reference -Iruntime/prepare $(INC_IO) $(INC_GEN)
-INC_API       = -Iruntime $(INC_GL)
+INC_API       = -Iruntime -Iruntime/include $(INC_GL)
 $(BUILD)/gen/base/%.o:          INC = $(INC_BASE)
 $(BUILD)/gen/%.o:               INC = $(INC_GEN)
 $(BUILD)/embedded_templates.o:  INC = $(INC_BASE)
@@ -55,7 +59,7 @@ $(BUILD)/runtime/%.o:           INC = $(INC_API)
 # error. Two programs measure internals no public call reaches and still
 # see everything: the compiler benchmark (IR sizes and pass times) and
 # `bench --trim-table` (scenes built in memory, packed trim pieces).
-$(BUILD)/examples/%.o:          INC = -Iruntime -Igen/base
+$(BUILD)/examples/%.o:          INC = $(INC_PUBLIC)
 INTERNAL_EXAMPLES = examples/bench_compiler.c examples/splinecast/bench_trim.c
 $(patsubst %.c,$(BUILD)/%.o,$(INTERNAL_EXAMPLES)): INC = $(INC_API)
 $(BUILD)/tests/%.o:             INC = $(INC_API) -Iruntime/terrain -Itests -Iexamples/splinecast
@@ -192,11 +196,11 @@ check-clang:
 # glslang.pc does not link.
 PREFIX  ?= /usr/local
 DESTDIR ?=
-SPLINECAST_VERSION = $(shell sed -n 's/^\#define SPLINECAST_VERSION "\(.*\)"/\1/p' runtime/splinecast.h)
+SPLINECAST_VERSION = $(shell sed -n 's/^\#define SPLINECAST_VERSION "\(.*\)"/\1/p' runtime/include/splinecast.h)
 install: $(LIB) $(CLI)
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/bin
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libsplinecast.a
-	install -m 644 runtime/splinecast.h gen/base/splinecast_base.h gen/base/splinecast_options.h \
+	install -m 644 runtime/include/splinecast.h gen/include/splinecast_base.h gen/include/splinecast_options.h \
 	  $(DESTDIR)$(PREFIX)/include/
 	install -m 755 $(CLI) $(DESTDIR)$(PREFIX)/bin/splinecast
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(SPLINECAST_VERSION)|' \
