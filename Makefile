@@ -56,11 +56,10 @@ $(BUILD)/runtime/%.o:           INC = $(INC_API)
 # The command line and the example programs use the library as any program
 # would: they see only the paths of the installed headers (splinecast.h and
 # the two it includes), so that a use of an internal header is a compile
-# error. Two programs measure internals no public call reaches and still
-# see everything: the compiler benchmark (IR sizes and pass times) and
-# `bench --trim-table` (scenes built in memory, packed trim pieces).
+# error. One program measures internals no public call reaches and still
+# sees everything: the compiler benchmark (IR sizes and pass times).
 $(BUILD)/examples/%.o:          INC = $(INC_PUBLIC)
-INTERNAL_EXAMPLES = examples/bench_compiler.c examples/splinecast/bench_trim.c
+INTERNAL_EXAMPLES = examples/bench_compiler.c
 $(patsubst %.c,$(BUILD)/%.o,$(INTERNAL_EXAMPLES)): INC = $(INC_API)
 $(BUILD)/tests/%.o:             INC = $(INC_API) -Iruntime/terrain -Itests -Iexamples/splinecast
 

@@ -10,6 +10,7 @@
  * translated. Every problem with an argument is reported through one list
  * of messages. */
 #include "api_private.h"
+#include "trim_pack.h"
 
 _Static_assert(SC_KEY_SIZE == SCG_KEY_MAX, "public and internal key sizes differ");
 _Static_assert((int)SC_OUTPUT_SHADE == (int)SCG_OUTPUT_SHADE &&
@@ -151,14 +152,25 @@ static sc_surface *scene_surface(sc_scene_id scene, int surface, sc_error *err)
     return &s->scene.surfaces[surface];
 }
 
+/* The same for a query that writes to `out`, named `out_name`: NULL too
+ * when out is NULL, so the queries check their arguments in one order. */
+static const sc_surface *queried_surface(sc_scene_id scene, int surface, const void *out,
+                                         const char *out_name, sc_error *err)
+{
+    const sc_surface *surf = scene_surface(scene, surface, err);
+    if (surf && !out) {
+        sc_api_invalid(err, out_name, PROBLEM_NULL, NULL);
+        return NULL;
+    }
+    return surf;
+}
+
 int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
                           sc_error *err)
 {
-    const sc_surface *surf = scene_surface(scene, surface, err);
+    const sc_surface *surf = queried_surface(scene, surface, info, "info", err);
     if (!surf)
         return SC_FAIL;
-    if (!info)
-        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
     *info = (sc_surface_info){.deg_u = surf->deg_u, .deg_v = surf->deg_v, .nu = surf->nu,
                               .nv = surf->nv, .rational = surf->rational != 0,
                               .trim_loops = surf->nloops};
@@ -169,14 +181,36 @@ int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
     return SC_OK;
 }
 
+int sc_query_surface_trim(sc_scene_id scene, int surface, sc_surface_trim_info *info,
+                          sc_error *err)
+{
+    const sc_surface *surf = queried_surface(scene, surface, info, "info", err);
+    if (!surf)
+        return SC_FAIL;
+    memset(info, 0, sizeof *info);
+    /* Packed at the surface's own trim degree, the one its key names
+     * (scene_keys.c), so the figures are those of the block a renderer
+     * uploads. */
+    int degree = sc_surface_trim_degree(surf);
+    sc_trim_block block;
+    if (sc_trim_pack(surf, degree, &block, err) != SC_OK)
+        return SC_FAIL;
+    if (block.ntexels)
+        *info = (sc_surface_trim_info){.degree = degree, .loops = block.nloops,
+                                       .pieces = block.npieces, .grid_u = block.grid_u,
+                                       .grid_v = block.grid_v, .entries = block.nentries,
+                                       .texels = block.ntexels,
+                                       .bytes = 16 * (size_t)block.ntexels};
+    sc_trim_block_free(&block);
+    return SC_OK;
+}
+
 int sc_eval_surface(sc_scene_id scene, int surface, double u, double v, sc_surface_point *out,
                     sc_error *err)
 {
-    const sc_surface *surf = scene_surface(scene, surface, err);
+    const sc_surface *surf = queried_surface(scene, surface, out, "out", err);
     if (!surf)
         return SC_FAIL;
-    if (!out)
-        return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
     memset(out, 0, sizeof *out);
     double u0, u1, v0, v1;
     sc_surface_domain(surf, &u0, &u1, &v0, &v1);

@@ -17,6 +17,7 @@
 #include "io.h"
 #include "nurbs.h"
 #include "splinecast.h"
+#include "trim_pack.h"
 
 /* A bilinear patch (the square [0, 2]² in z = 0), a polygon face the
  * reader skips, and no trims. */
@@ -85,6 +86,63 @@ TEST(api_cli_scene_and_surface_queries)
     CHECK_INT(curves, 9);
     sc_scene_free(&internal);
     sc_destroy_scene(scene);
+    sc_shutdown();
+}
+
+/* `bench --trim-table`'s figures: every trimmed example's block as
+ * sc_trim_pack packs it at the surface's trim degree, which the surface's
+ * key names; zeros for an untrimmed surface. */
+TEST(api_cli_surface_trim_matches_the_packed_block)
+{
+    static const char *const files[] = {"trim_nine.obj", "trim_star.obj", "trim_nested.obj",
+                                        "trim_touch.obj", "trimmed_hole.obj"};
+    sc_error err = {0};
+    for (size_t f = 0; f < sizeof files / sizeof files[0]; f++) {
+        char path[256];
+        snprintf(path, sizeof path, "examples/scenes/%s", files[f]);
+        sc_scene_id scene;
+        sc_scene internal;
+        CHECK_INT(sc_make_scene(&(sc_scene_desc){.path = test_root(path)}, &scene, &err), SC_OK);
+        CHECK_INT(sc_read_scene(test_root(path), &internal, &err), SC_OK);
+        const sc_surface *surf = &internal.surfaces[0];
+        sc_trim_block block;
+        CHECK_INT(sc_trim_pack(surf, sc_surface_trim_degree(surf), &block, &err), SC_OK);
+        sc_surface_trim_info t;
+        CHECK_INT(sc_query_surface_trim(scene, 0, &t, &err), SC_OK);
+        CHECK_INT(t.degree, sc_surface_trim_degree(surf));
+        CHECK_INT(t.loops, block.nloops);
+        CHECK_INT(t.pieces, block.npieces);
+        CHECK_INT(t.grid_u, block.grid_u);
+        CHECK_INT(t.grid_v, block.grid_v);
+        CHECK_INT(t.entries, block.nentries);
+        CHECK_INT(t.texels, block.ntexels);
+        CHECK_INT((long)t.bytes, 16L * block.ntexels);
+        CHECK(t.pieces > 0 && t.loops > 0);
+        sc_key key;
+        char fast[32];
+        snprintf(fast, sizeof fast, "-fast%di", t.degree);
+        CHECK_INT(sc_query_surface_key(scene, 0, NULL, &key, &err), SC_OK);
+        CHECK_CONTAINS(key.text, fast);
+        sc_trim_block_free(&block);
+        sc_scene_free(&internal);
+        sc_destroy_scene(scene);
+    }
+
+    sc_scene_id square;
+    test_warnings w = {0};
+    sc_set_logger(test_gather_warnings, &w);   /* the reader's note on the polygon */
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.text = square_obj, .size = sizeof square_obj - 1,
+                                             .name = "sq.obj"}, &square, &err), SC_OK);
+    sc_set_logger(NULL, NULL);
+    sc_surface_trim_info t, zero = {0};
+    memset(&t, 0xff, sizeof t);
+    CHECK_INT(sc_query_surface_trim(square, 0, &t, &err), SC_OK);
+    CHECK(!memcmp(&t, &zero, sizeof t));
+    CHECK_INT(sc_query_surface_trim(square, 1, &t, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "surface is out of range: 1 (0 to 0)");
+    CHECK_INT(sc_query_surface_trim(square, 0, NULL, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "info");
+    sc_destroy_scene(square);
     sc_shutdown();
 }
 

@@ -111,6 +111,27 @@ typedef struct sc_surface_info {
 int sc_query_surface_info(sc_scene_id scene, int surface, sc_surface_info *info,
                           sc_error *err);
 
+/* A surface's trim loops as the trimmed programs read them: cut exactly
+ * into v-monotone rational Bézier pieces and packed into the surface's
+ * trim block (docs/trimming.md), as a renderer packs them. The same for
+ * every trim method: the methods differ in how they walk the block. All
+ * zero for an untrimmed surface. */
+typedef struct sc_surface_trim_info {
+    int degree;                /* highest trim-curve degree: the N of the
+                                  surface's trimmed key (clipN, fastN, …) */
+    int loops;                 /* loops with pieces */
+    int pieces;                /* pieces (horizontal ones, in float, left out) */
+    int grid_u, grid_v;        /* the block's grid of cells (powers of two) */
+    int entries;               /* entries of the cells' piece lists */
+    int texels;                /* RGBA float texels of the block */
+    size_t bytes;              /* the block's GPU size: 16 per texel */
+} sc_surface_trim_info;
+
+/* Packs the surface's trim loops and reports the block. Fails for trim
+ * curves the preparation refuses, as sc_make_renderer would. */
+int sc_query_surface_trim(sc_scene_id scene, int surface, sc_surface_trim_info *info,
+                          sc_error *err);
+
 /* The control points of a surface, nu × nv of them, u fastest: `points`
  * 3 doubles each (x, y, z: Euclidean, in the surface's own coordinates,
  * before its transform), `weights` 1 each. Either may be NULL. */
