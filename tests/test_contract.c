@@ -4,6 +4,7 @@
  * generated programs declare is an entry with the same name and type, the
  * runtime's gpu_vertex is laid out as the attribute table says, and a
  * renderer's target has the output table's attachments, in its order. */
+#include "gl_context_util.h"
 #include "test.h"
 
 #include <stdlib.h>
@@ -206,26 +207,10 @@ TEST(contract_gpu_vertex_matches_attributes)
     CHECK_INT(total, sizeof(gpu_vertex));
 }
 
-static sc_gl_context *contract_context(const char **why)
-{
-    static sc_gl_context *ctx;
-    static sc_error err;
-    static int tried;
-    if (!tried) {
-        tried = 1;
-        sc_gl_context_desc desc = {0};
-        sc_gl_context_create(&desc, &ctx, &err);
-    }
-    *why = err.message;
-    if (ctx && sc_gl_context_make_current(ctx, &err) != SC_OK)
-        return NULL;
-    return ctx;
-}
-
 TEST(contract_render_target_has_the_output_table)
 {
     const char *why = "";
-    sc_gl_context *ctx = contract_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;

@@ -5,6 +5,7 @@
  * scenes' known answers (the nearest layer everywhere, the CPU reference);
  * the batch rule (read-back count); hulls holding the eye; the options on the
  * command line. */
+#include "gl_context_util.h"
 #include "test.h"
 
 #include <stdlib.h>
@@ -16,22 +17,6 @@
 #include "emit_glsl.h"
 #include "options.h"
 #include "refcast.h"
-
-static sc_gl_context *ert_context(const char **why)
-{
-    static sc_gl_context *ctx;
-    static sc_error err;
-    static int tried;
-    if (!tried) {
-        tried = 1;
-        sc_gl_context_desc desc = {0};
-        sc_gl_context_create(&desc, &ctx, &err);
-    }
-    *why = err.message;
-    if (ctx && sc_gl_context_make_current(ctx, &err) != SC_OK)
-        return NULL;
-    return ctx;
-}
 
 static const char *scene_path(const char *name)
 {
@@ -86,7 +71,7 @@ static const sc_camera stack_camera = {.eye = {0, 0, 4.5}, .target = {0, 0, 0},
 TEST(ert_modes_stack_same_image)
 {
     const char *why;
-    sc_gl_context *ctx = ert_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -154,7 +139,7 @@ TEST(ert_modes_stack_same_image)
 TEST(ert_nearest_from_earlier_batches)
 {
     const char *why;
-    sc_gl_context *ctx = ert_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -202,7 +187,7 @@ TEST(ert_nearest_from_earlier_batches)
 TEST(ert_orders_mixed_same_image)
 {
     const char *why;
-    sc_gl_context *ctx = ert_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const char *path = scene_path("mixed_keys.obj");
@@ -253,7 +238,7 @@ TEST(ert_orders_mixed_same_image)
 TEST(ert_eye_inside_hull)
 {
     const char *why;
-    sc_gl_context *ctx = ert_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const char *path = scene_path("stack_4.obj");

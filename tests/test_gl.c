@@ -12,38 +12,17 @@
 #include "gl_data.h"
 #include "gl_render.h"
 #include "gl_target.h"
+#include "gl_context_util.h"
 #include "imgdiff.h"
 #include "io.h"
 #include "options.h"
 #include "refcast.h"
 #include "scene_keys.h"
 
-/* The context of a backend, created once; NULL (with the reason in
- * *why) when the machine cannot make one. */
-static sc_gl_context *test_context(sc_backend backend, const char **why)
-{
-    if (backend == SC_BACKEND_DEFAULT) {
-        sc_gl_context *ctx = test_context(SC_BACKEND_EGL, why);
-        return ctx ? ctx : test_context(SC_BACKEND_OSMESA, why);
-    }
-    static sc_gl_context *contexts[3];
-    static sc_error errors[3];
-    static int tried[3];
-    if (!tried[backend]) {
-        tried[backend] = 1;
-        sc_gl_context_desc desc = {.backend = backend};
-        sc_gl_context_create(&desc, &contexts[backend], &errors[backend]);
-    }
-    *why = errors[backend].message;
-    if (contexts[backend] && sc_gl_context_make_current(contexts[backend], NULL) != SC_OK)
-        return NULL;
-    return contexts[backend];
-}
-
 TEST(gl_context_egl)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_EGL, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_EGL, &why);
     if (!ctx)
         SKIP("no EGL context: %s", why);
     CHECK_INT(sc_gl_context_backend(ctx), SC_BACKEND_EGL);
@@ -58,7 +37,7 @@ TEST(gl_context_egl)
 TEST(gl_context_osmesa)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_OSMESA, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_OSMESA, &why);
     if (!ctx)
         SKIP("no OSMesa context: %s", why);
     CHECK_INT(sc_gl_context_backend(ctx), SC_BACKEND_OSMESA);
@@ -87,7 +66,7 @@ TEST(gl_backend_names)
 TEST(gl_loader_table)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -140,7 +119,7 @@ static GLuint compile_program(const sc_gl *gl, const char *vs_src, const char *f
 static void triangle_check(sc_backend backend)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(backend, &why);
+    sc_gl_context *ctx = test_gl_context(backend, &why);
     if (!ctx)
         SKIP("no %s context: %s", cli_backend_name(backend), why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -224,7 +203,7 @@ TEST(gl_triangle_osmesa) { triangle_check(SC_BACKEND_OSMESA); }
 TEST(gl_target_bad_size)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -251,7 +230,7 @@ static void capture_log(sc_log_level level, const char *message, void *user)
 TEST(gl_debug_output)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -277,7 +256,7 @@ static int render_view_against_reference(sc_backend backend, const char *path,
                                          sc_render_stats *stats, scg_key *key0,
                                          const char **why)
 {
-    sc_gl_context *ctx = test_context(backend, why);
+    sc_gl_context *ctx = test_gl_context(backend, why);
     if (!ctx)
         return -1;
     static sc_error err;
@@ -411,7 +390,7 @@ static void add_patch(sc_scene *scene, int du, int dv, double x0, int rational)
 TEST(gl_render_distinct_keys)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -475,7 +454,7 @@ static int render_view(const sc_gl *gl, const sc_scene *scene, sc_show view,
 TEST(gl_render_far_from_origin)
 {
     const char *why;
-    if (!test_context(SC_BACKEND_DEFAULT, &why))
+    if (!test_gl_context(SC_BACKEND_DEFAULT, &why))
         SKIP("no GL context: %s", why);
     sc_scene scene;
     sc_error err = {0};
@@ -505,7 +484,7 @@ TEST(gl_render_far_from_origin)
 TEST(gl_render_hull_view)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -557,7 +536,7 @@ TEST(gl_render_hull_view)
 TEST(gl_render_keys_are_the_scene_keys)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     static const char *const scenes[] = {"mixed.obj", "trim_nine.obj"};
@@ -597,7 +576,7 @@ TEST(gl_render_keys_are_the_scene_keys)
 TEST(gl_render_degree12_generic)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -631,7 +610,7 @@ TEST(gl_render_degree12_generic)
 TEST(gl_render_torus_degree12)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     REQUIRE_DATA("iges/OCC26138_Torus.igs");
@@ -663,7 +642,7 @@ TEST(gl_render_torus_degree12)
 TEST(gl_data_update_one_surface)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);
@@ -754,7 +733,7 @@ static int against_fresh_and_reference(const sc_gl *gl, sc_renderer *r, const sc
 TEST(gl_render_update_one_surface)
 {
     const char *why;
-    sc_gl_context *ctx = test_context(SC_BACKEND_DEFAULT, &why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);

@@ -5,6 +5,7 @@
  * real GL_OUT_OF_MEMORY gives; no EGL falls back to OSMesa and a driver
  * capped below 4.5 names the version it has; and a frame is the same bits
  * every time for the same input and thread count. */
+#include "gl_context_util.h"
 #include "test.h"
 
 #include <stdlib.h>
@@ -15,22 +16,6 @@
 #include "programs.h"
 #include "scene_keys.h"
 #include "splinecast.h"
-
-static sc_gl_context *fault_context(const char **why)
-{
-    static sc_gl_context *ctx;
-    static sc_error err;
-    static int tried;
-    if (!tried) {
-        tried = 1;
-        sc_gl_context_desc desc = {0};
-        sc_gl_context_create(&desc, &ctx, &err);
-    }
-    *why = err.message;
-    if (ctx && sc_gl_context_make_current(ctx, &err) != SC_OK)
-        return NULL;
-    return ctx;
-}
 
 /* `text` with `line` inserted before the line that holds its last '}' (the
  * end of main); *at is the inserted line's number, counted from 1. */
@@ -57,7 +42,7 @@ static char *insert_before_end(const char *text, const char *line, int *at)
 TEST(gl_fault_program_rejected)
 {
     const char *why;
-    sc_gl_context *ctx = fault_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     sc_scene scene;
@@ -168,7 +153,7 @@ TEST(gl_fault_memory_budget)
 TEST(gl_fault_out_of_memory)
 {
     const char *why;
-    sc_gl_context *ctx = fault_context(&why);
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
     if (!ctx)
         SKIP("no GL context: %s", why);
     const sc_gl *gl = sc_gl_context_gl(ctx);

@@ -1,0 +1,13 @@
+/* gl_context_util.h — the GL contexts the GL tests share (gl_context_util.c):
+ * one per backend, made on first use and kept for the whole run, since
+ * making a context costs more than most GL tests. */
+#ifndef SC_TEST_GL_CONTEXT_UTIL_H
+#define SC_TEST_GL_CONTEXT_UTIL_H
+
+#include "gl_context.h"
+
+/* The context of a backend, made current; NULL (with the reason in *why)
+ * when the machine cannot make one. SC_BACKEND_DEFAULT: EGL, else OSMesa. */
+sc_gl_context *test_gl_context(sc_backend backend, const char **why);
+
+#endif
