@@ -3,6 +3,14 @@
  * every stage (--dump-ir). */
 #include "newton.h"
 
+/* The iteration of each method, by the key's method field. */
+static scg_method_fn method_fn(const scg_key *key)
+{
+    switch (key->method) {
+    default: return scg_method_newton;
+    }
+}
+
 int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
 {
     *out = NULL;
@@ -11,7 +19,7 @@ int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
     scg_program *prog = scg_program_create(key);
     scg_builder b;
     scg_builder_init(&b, prog);
-    scg_build_newton(&b, key);
+    scg_build_intersection(&b, key, method_fn(key));
     if (scg_validate(prog, err) != SC_OK) {
         scg_program_free(prog);
         return SC_FAIL;
