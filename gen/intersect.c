@@ -377,6 +377,50 @@ static void bezier_points(scg_isect *c, scg_value r0)
     }
 }
 
+/* |det J| below this fraction of |Su|·|Sv| counts as singular: a degenerate
+ * point or a ray tangent to the surface, to float precision. */
+#define SINGULAR_SINE 1.0e-6f
+
+scg_value scg_isect_singular(scg_isect *c, scg_value det, scg_value ju, scg_value jv)
+{
+    /* |det J| = |Su × Sv|·|cos(ray, normal)|: relative to |Su|·|Sv| it
+     * vanishes at a degenerate point and on the silhouette alike. */
+    scg_builder *b = c->b;
+    scg_name(b, "singular");
+    scg_value det_size = scg_abs(b, det);
+    scg_value su_len = scg_length(b, ju);
+    scg_value sv_len = scg_length(b, jv);
+    scg_value sine = scg_const_f(b, SINGULAR_SINE);
+    scg_value parallel = scg_mul(b, sine, scg_mul(b, su_len, sv_len));
+    return scg_le(b, det_size, parallel);
+}
+
+scg_value scg_isect_take_step(scg_isect *c, scg_value uv, scg_value next, scg_value singular,
+                              scg_value converged)
+{
+    scg_builder *b = c->b;
+    /* A converged step is still taken: it costs nothing more and leaves an
+     * error of second order. */
+    scg_store(b, c->uv_var, scg_select(b, singular, uv, next));
+    scg_value iters = scg_load(b, c->iters_var);
+    scg_value no_step = scg_const_i(b, 0);
+    scg_value one_step = scg_const_i(b, 1);
+    scg_value counted = scg_select(b, singular, no_step, one_step);
+    scg_store(b, c->iters_var, scg_add(b, iters, counted));
+    scg_name(b, "stop");
+    scg_value stop = scg_or(b, converged, singular);
+    scg_name(b, NULL);
+    /* An iterate may step out of the box once (near an edge of the patch
+     * where the parametrisation is compressed, a step within the tolerance
+     * can cross it by 1e-4) but must come back with the next step. */
+    scg_value was_inside = scg_isect_inside(b, uv, c->lo, c->hi);
+    scg_value is_inside = scg_isect_inside(b, next, c->lo, c->hi);
+    scg_value left = scg_not(b, scg_or(b, was_inside, is_inside));
+    scg_value done = scg_or(b, stop, left);
+    scg_store(b, c->done_var, done);
+    return done;
+}
+
 void scg_isect_vars(scg_isect *c, scg_value uv0, scg_value behind)
 {
     scg_builder *b = c->b;

@@ -64,6 +64,14 @@ scg_value scg_isect_inside(scg_builder *b, scg_value uv, scg_value lo, scg_value
 /* x1·y1 − x2·y2: determinants and Cramer's rule. */
 scg_value scg_products_difference(scg_builder *b, scg_value x1, scg_value y1, scg_value x2,
                                   scg_value y2);
+/* True when |det| ≤ SCG_SINGULAR_SINE·|ju|·|jv|: the Jacobian with columns
+ * ju, jv (vec3 in the ray's frame) is singular to float precision. */
+scg_value scg_isect_singular(scg_isect *c, scg_value det, scg_value ju, scg_value jv);
+/* The end of a step from uv to next: next is taken unless singular, the
+ * count grows, and done is set on convergence, a singular Jacobian, or
+ * when uv and next both lie outside the box. Returns done. */
+scg_value scg_isect_take_step(scg_isect *c, scg_value uv, scg_value next, scg_value singular,
+                              scg_value converged);
 /* The variables uv (from uv0), iters (0) and done (`behind`, or false). */
 void scg_isect_vars(scg_isect *c, scg_value uv0, scg_value behind);
 /* `count` calls of step(c, user): unrolled, each after the first guarded by

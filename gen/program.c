@@ -1,12 +1,16 @@
 /* program.c — from a key to an optimised program: the metaprogram the key
  * names, validation, then the pass list (optimize.c) with a hook after
  * every stage (--dump-ir). */
+#include "broyden.h"
 #include "newton.h"
+#include "subdiv.h"
 
 /* The iteration of each method, by the key's method field. */
 static scg_method_fn method_fn(const scg_key *key)
 {
     switch (key->method) {
+    case SC_METHOD_BROYDEN: return scg_method_broyden;
+    case SC_METHOD_SUBDIV: return scg_method_subdiv;
     default: return scg_method_newton;
     }
 }

@@ -149,6 +149,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         sc_api_check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
         sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
         sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
+        sc_api_check_enum(d->method, SC_METHOD_HYBRID + 1, "sc_renderer_desc.method", err) ||
         sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
         return SC_FAIL;
     if (!(d->hull_tolerance >= 0 && d->hull_tolerance < 1))
@@ -169,6 +170,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->ert = d->termination;
     r->order = d->order;
     r->batch_hulls = d->batch_hulls;
+    r->method = d->method;
     return SC_OK;
 }
 

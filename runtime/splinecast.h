@@ -249,6 +249,10 @@ typedef struct sc_renderer_desc {
     int batch_hulls;           /* hulls per batch in the manual termination
                                   modes (a batch sees the hits of those
                                   before it) and per hybrid bucket (32) */
+    sc_method method;          /* intersection method (newton); bclip is
+                                  refused (not implemented). With subdiv,
+                                  max_iters is the depth of the subdivision
+                                  stack (24) and start is ignored */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data

@@ -38,7 +38,8 @@ static const char usage[] =
     "  --camera EX,EY,EZ,TX,TY,TZ,FOVY   view (default: framing the scene)\n"
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --hull uniform:N|adaptive:TOL   proxy hulls (default adaptive:0.003)\n"
-    "  --init mid|cpmap       Newton start (default cpmap)\n"
+    "  --init mid|cpmap|view  Newton start (default cpmap)\n"
+    "  --method newton|broyden|bclip|subdiv|hybrid   intersection method (newton)\n"
     "  --frames N             timed frames (default 5)\n"
     "  --ert LIST             early ray termination: all or a comma list of none,\n"
     "                         conservative, manual, manual-both\n"
@@ -220,10 +221,11 @@ int cmd_bench(int argc, char **argv)
                                 &desc.hulls.tolerance, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
-            i++;
-            if (strcmp(argv[i], "mid") && strcmp(argv[i], "cpmap"))
-                return cli_usage_error("bench", "--init takes mid or cpmap, not '%s'", argv[i]);
-            desc.start = !strcmp(argv[i], "mid") ? SC_START_MID : SC_START_CPMAP;
+            if (cli_start_parse(argv[++i], &desc.start, &err) != SC_OK)
+                return cli_usage_error("bench", "%s", err.message);
+        } else if (!strcmp(a, "--method") && next) {
+            if (cli_method_parse(argv[++i], &desc.method, &err) != SC_OK)
+                return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--frames") && next) {
             long n = strtol(argv[++i], &end, 10);
             if (end == argv[i] || *end || n < 1 || n > 1000)

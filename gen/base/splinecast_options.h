@@ -17,6 +17,21 @@ extern "C" {
 #define SC_MAX_TRIM_ITERS 64       /* clipping iterations per trim crossing */
 #define SC_MAX_HULL_DIVISIONS 64   /* uniform hulls: sub-patches per side */
 
+/* How a ray meets a patch (keys: newton, broyden, bclip, subdiv, hybrid;
+ * docs/variant-key.md, docs/compiler.md). */
+typedef enum sc_method {
+    SC_METHOD_DEFAULT = 0, /* newton */
+    SC_METHOD_NEWTON,      /* Newton iteration on the ray's two planes */
+    SC_METHOD_BROYDEN,     /* Broyden's method: the Jacobian of the first
+                              evaluation, then rank-one updates */
+    SC_METHOD_BCLIP,       /* Bézier clipping: keys parse it, but it is not
+                              implemented, so every call refuses it */
+    SC_METHOD_SUBDIV,      /* object-space subdivision of the sub-patch
+                              (Dammertz & Keller) with a stack of intervals */
+    SC_METHOD_HYBRID       /* Newton, and subdivision in the same hull where
+                              Newton does not converge inside it */
+} sc_method;
+
 /* Where Newton's method starts (keys: mid, cp, view). */
 typedef enum sc_start {
     SC_START_DEFAULT = 0,  /* cpmap */

@@ -42,6 +42,9 @@ typedef struct sc_render_desc {
     sc_program_cache *programs; /* the cache to take programs from, shared
                                with whoever else uses it and outliving the
                                renderer; NULL: a cache of the renderer's own */
+    sc_method method;       /* intersection method (default newton); with
+                               subdiv, max_iters is the stack depth
+                               (SCG_DEFAULT_SUBDIV_DEPTH) */
 } sc_render_desc;
 
 /* Chosen by measurement (docs/speed.md, `splinecast bench --order`). */
