@@ -325,8 +325,6 @@ int scg_key_check(const scg_key *key, sc_error *err)
         missing = "triangular Bézier patches (tri) are";
     else if (key->method == SC_METHOD_BCLIP)
         missing = "Bézier clipping (bclip) is";
-    else if (key->method == SC_METHOD_HYBRID)
-        missing = "the hybrid method (hybrid) is";
     else if (key->start == SC_START_VIEW)
         missing = "view-dependent initial values (view) are";
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)

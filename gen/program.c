@@ -2,6 +2,7 @@
  * names, validation, then the pass list (optimize.c) with a hook after
  * every stage (--dump-ir). */
 #include "broyden.h"
+#include "hybrid.h"
 #include "newton.h"
 #include "subdiv.h"
 
@@ -11,6 +12,7 @@ static scg_method_fn method_fn(const scg_key *key)
     switch (key->method) {
     case SC_METHOD_BROYDEN: return scg_method_broyden;
     case SC_METHOD_SUBDIV: return scg_method_subdiv;
+    case SC_METHOD_HYBRID: return scg_method_hybrid;
     default: return scg_method_newton;
     }
 }

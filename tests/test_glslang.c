@@ -205,6 +205,8 @@ TEST(glslang_other_key_options_validate)
         "nurbsdyn-rat-loop-fast2i16-broyden-cp-it6-tol0.05-ert2-out.shade",
         "bez3x3-rat-dc-fast3i16-subdiv-mid-it24-tol0.05-ert2-out.shade.aov",
         "bez2x4-poly-bern-trim0-subdiv-mid-it8-tol1-ert0-out.iters",
+        "bez3x3-poly-dc-fast2i16-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
+        "bez4x2-rat-bern-trim0-hybrid-mid-it4-tol0.25-ert2-out.shade",
     };
     for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
         scg_key key;

@@ -166,7 +166,6 @@ TEST(key_reserved_refused)
     static const struct { const char *text, *says; } cases[] = {
         {"tri3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "triangular"},
         {"bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade", "Bézier clipping (bclip)"},
-        {"bez3x3-poly-dc-trim0-hybrid-mid-it4-tol0.25-ert0-out.shade", "hybrid"},
         {"bez3x3-poly-dc-trim0-newton-view-it4-tol0.25-ert0-out.shade", "view-dependent"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

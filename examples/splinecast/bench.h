@@ -42,4 +42,13 @@ int bench_sweep_parse_batches(const char *text, bench_sweep *sweep);
 int bench_sweep_run(const sc_gl *gl, const bench_sweep *sweep, sc_render_desc desc,
                     const char *camera_arg, int width, int height, int frames);
 
+/* The methods side by side (bench_methods.c): `--method A,B,…` parsed
+ * into `methods` (0 or the exit status of a usage error), then one run
+ * with every timed frame drawn by each method in turn. */
+#define BENCH_MAX_METHODS 8
+int bench_methods_parse(const char *text, sc_method *methods, int *count);
+int bench_methods_run(const sc_gl *gl, const char *scene_path, sc_render_desc desc,
+                      const char *camera_arg, int width, int height, int frames,
+                      const sc_method *methods, int count);
+
 #endif

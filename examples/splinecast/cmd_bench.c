@@ -39,7 +39,12 @@ static const char usage[] =
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --hull uniform:N|adaptive:TOL   proxy hulls (default adaptive:0.003)\n"
     "  --init mid|cpmap|view  Newton start (default cpmap)\n"
-    "  --method newton|broyden|bclip|subdiv|hybrid   intersection method (newton)\n"
+    "  --method LIST          intersection method (newton); a comma list of\n"
+    "                         newton, broyden, bclip, subdiv, hybrid compares\n"
+    "                         them on SCENE, each timed frame drawn by every\n"
+    "                         method in turn: one line `bench variant=method\n"
+    "                         method=M ...` each, then the frame time of each\n"
+    "                         over the first's\n"
     "  --frames N             timed frames (default 5)\n"
     "  --ert LIST             early ray termination: all or a comma list of none,\n"
     "                         conservative, manual, manual-both\n"
@@ -197,6 +202,8 @@ int cmd_bench(int argc, char **argv)
     int width = 1024, height = 1024, frames = 5, deg_lo = 0, deg_hi = 0, status = 0;
     sc_error err = {0};
     bench_sweep sweep = {0};
+    sc_method methods[BENCH_MAX_METHODS];
+    int nmethods = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
@@ -224,8 +231,9 @@ int cmd_bench(int argc, char **argv)
             if (cli_start_parse(argv[++i], &desc.start, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--method") && next) {
-            if (cli_method_parse(argv[++i], &desc.method, &err) != SC_OK)
-                return cli_usage_error("bench", "%s", err.message);
+            if ((status = bench_methods_parse(argv[++i], methods, &nmethods)) != 0)
+                return status;
+            desc.method = methods[0];
         } else if (!strcmp(a, "--frames") && next) {
             long n = strtol(argv[++i], &end, 10);
             if (end == argv[i] || *end || n < 1 || n > 1000)
@@ -268,6 +276,12 @@ int cmd_bench(int argc, char **argv)
         if (!sweep.nscenes)
             sweep.scenes[sweep.nscenes++] = scene_path;
         status = bench_sweep_run(gl, &sweep, desc, camera_arg, width, height, frames);
+        sc_gl_context_destroy(ctx);
+        return status;
+    }
+    if (nmethods > 1) {
+        status = bench_methods_run(gl, scene_path, desc, camera_arg, width, height, frames,
+                                   methods, nmethods);
         sc_gl_context_destroy(ctx);
         return status;
     }
