@@ -224,6 +224,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
                    "sc_keys_desc.termination", err) ||
         sc_api_check_enum(desc->start, SC_START_CPMAP + 1, "sc_keys_desc.start", err) ||
         sc_api_check_enum(desc->trim, SC_TRIM_NONE + 1, "sc_keys_desc.trim", err) ||
+        sc_api_check_enum(desc->method, SC_METHOD_HYBRID + 1, "sc_keys_desc.method", err) ||
         sc_api_check_tolerance(desc->tolerance_px, "sc_keys_desc.tolerance_px", &opts->tol_milli, err))
         return SC_FAIL;
     if (desc->outputs & ~(unsigned)SCG_OUTPUT_ALL)
@@ -238,6 +239,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->start = desc->start;
     opts->termination = desc->termination;
     opts->outputs = desc->outputs;
+    opts->method = desc->method;
     return SC_OK;
 }
 

@@ -147,6 +147,8 @@ typedef struct sc_keys_desc {
                                   termination (manual: keys say ert1) */
     unsigned outputs;          /* SC_OUTPUT_* bits (SC_OUTPUT_SHADE |
                                   SC_OUTPUT_AOV) */
+    sc_method method;          /* intersection method (newton), as
+                                  sc_renderer_desc.method */
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of

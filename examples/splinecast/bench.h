@@ -18,6 +18,9 @@ typedef struct bench_result {
 /* Builds a renderer, draws a warm-up frame and `frames` timed ones. */
 int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
               const sc_camera *cam, int frames, bench_result *out, sc_error *err);
+/* Covered pixels, iterations per covered pixel, MPixel/s (from
+ * out->frame_ms) and the renderer's figures, from its last frame's AOVs. */
+void bench_figures(const sc_renderer *r, const sc_aov *aov, bench_result *out);
 /* One `bench variant=…` line on stdout; `extra` goes after the variant. */
 void bench_print(const char *variant, const char *extra, const bench_result *r);
 

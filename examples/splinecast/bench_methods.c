@@ -50,15 +50,7 @@ static int finish(sc_renderer *r, double *times, int frames, bench_result *out, 
         return SC_FAIL;
     qsort(times, (size_t)frames, sizeof *times, compare_ms);
     out->frame_ms = times[frames / 2];
-    double iters = 0;
-    for (int p = 0; p < aov.width * aov.height; p++)
-        if (aov.surface[p] >= 0) {
-            out->covered++;
-            iters += aov.iters[p];
-        }
-    out->iters_mean = out->covered ? iters / (double)out->covered : 0;
-    out->mpix_s = (double)out->covered / (out->frame_ms * 1e3);
-    sc_renderer_stats(r, &out->stats);
+    bench_figures(r, &aov, out);
     out->compile_ms = out->stats.compile_ms;
     sc_aov_free(&aov);
     return SC_OK;

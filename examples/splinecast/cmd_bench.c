@@ -69,6 +69,19 @@ static int compare_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+void bench_figures(const sc_renderer *r, const sc_aov *aov, bench_result *out)
+{
+    double iters = 0;
+    for (int p = 0; p < aov->width * aov->height; p++)
+        if (aov->surface[p] >= 0) {
+            out->covered++;
+            iters += aov->iters[p];
+        }
+    out->iters_mean = out->covered ? iters / (double)out->covered : 0;
+    out->mpix_s = out->frame_ms > 0 ? (double)out->covered / (out->frame_ms * 1e3) : 0;
+    sc_renderer_stats(r, &out->stats);
+}
+
 int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
               const sc_camera *cam, int frames, bench_result *out, sc_error *err)
 {
@@ -92,15 +105,7 @@ int bench_run(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc
         qsort(times, (size_t)frames, sizeof(double), compare_double);
         out->frame_ms = frames % 2 ? times[frames / 2]
                                    : 0.5 * (times[frames / 2 - 1] + times[frames / 2]);
-        double iters = 0;
-        for (int p = 0; p < aov.width * aov.height; p++)
-            if (aov.surface[p] >= 0) {
-                out->covered++;
-                iters += aov.iters[p];
-            }
-        out->iters_mean = out->covered ? iters / (double)out->covered : 0;
-        out->mpix_s = out->frame_ms > 0 ? (double)out->covered / (out->frame_ms * 1e3) : 0;
-        sc_renderer_stats(r, &out->stats);
+        bench_figures(r, &aov, out);
         out->compile_ms = out->stats.compile_ms + fmax(warm_up - out->frame_ms, 0);
         sc_aov_free(&aov);
     }
