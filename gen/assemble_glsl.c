@@ -42,14 +42,15 @@ static const char *eval_words(scg_eval_form eval)
     return "?";
 }
 
-static const char *method_words(scg_method method)
+static const char *method_words(sc_method method)
 {
     switch (method) {
-    case SCG_METHOD_NEWTON: return "Newton iteration on the ray's two planes";
-    case SCG_METHOD_BROYDEN: return "Broyden iteration";
-    case SCG_METHOD_BCLIP: return "Bezier clipping";
-    case SCG_METHOD_SUBDIV: return "object-space subdivision";
-    case SCG_METHOD_HYBRID: return "hybrid subdivision and Newton";
+    case SC_METHOD_DEFAULT: break;
+    case SC_METHOD_NEWTON: return "Newton iteration on the ray's two planes";
+    case SC_METHOD_BROYDEN: return "Broyden iteration";
+    case SC_METHOD_BCLIP: return "Bezier clipping";
+    case SC_METHOD_SUBDIV: return "object-space subdivision";
+    case SC_METHOD_HYBRID: return "Newton iteration, then object-space subdivision where it fails";
     }
     return "?";
 }

@@ -15,8 +15,9 @@ static const char *const eval_names[] = {"dc", "bern", "loop"};
  * since a key holds the value chosen. */
 static const char *const trim_names[] = {[SC_TRIM_FAST] = "fast", [SC_TRIM_CLIP] = "clip",
                                          [SC_TRIM_LEFT] = "left", [SC_TRIM_NONE] = "trim"};
-static const char *const method_names[] = {"newton", "broyden", "bclip", "subdiv",
-                                           "hybrid"};
+static const char *const method_names[] = {
+    [SC_METHOD_NEWTON] = "newton", [SC_METHOD_BROYDEN] = "broyden", [SC_METHOD_BCLIP] = "bclip",
+    [SC_METHOD_SUBDIV] = "subdiv", [SC_METHOD_HYBRID] = "hybrid"};
 static const char *const start_names[] = {[SC_START_MID] = "mid", [SC_START_CPMAP] = "cp",
                                           [SC_START_VIEW] = "view"};
 static const char *const output_names[] = {"shade", "aov", "iters", "uv", "hull"};
@@ -30,7 +31,7 @@ void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v)
     key->deg_u = deg_u;
     key->deg_v = deg_v;
     key->eval = SCG_EVAL_DC;
-    key->method = SCG_METHOD_NEWTON;
+    key->method = SC_METHOD_NEWTON;
     key->trim = SC_TRIM_NONE;
     key->start = SCG_DEFAULT_START;
     key->max_iters = SCG_DEFAULT_ITERS;
@@ -260,7 +261,7 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
     int method = match_exact(fields[4], method_names, COUNT(method_names));
     if (method < 0)
         return field_error(err, text, 4, fields[4], "newton, broyden, bclip, subdiv or hybrid");
-    k.method = (scg_method)method;
+    k.method = (sc_method)method;
     int start = match_exact(fields[5], start_names, COUNT(start_names));
     if (start < 0)
         return field_error(err, text, 5, fields[5], "mid, cp or view");
@@ -322,15 +323,22 @@ int scg_key_check(const scg_key *key, sc_error *err)
     const char *missing = NULL;
     if (key->kind == SCG_PATCH_TRIANGLE)
         missing = "triangular Bézier patches (tri) are";
-    else if (key->method != SCG_METHOD_NEWTON)
-        missing = key->method == SCG_METHOD_BROYDEN  ? "Broyden's method (broyden) is"
-                  : key->method == SCG_METHOD_BCLIP  ? "Bézier clipping (bclip) is"
-                  : key->method == SCG_METHOD_SUBDIV ? "object-space subdivision (subdiv) is"
-                                                     : "the hybrid method (hybrid) is";
+    else if (key->method == SC_METHOD_BCLIP)
+        missing = "Bézier clipping (bclip) is";
     else if (key->start == SC_START_VIEW)
         missing = "view-dependent initial values (view) are";
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
+    bool subdivides = key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_HYBRID;
+    if (!missing && subdivides && (key->kind != SCG_PATCH_BEZIER || key->eval == SCG_EVAL_LOOP))
+        return sc_fail_key(err, text,
+                           "%s subdivides the record's Bézier points, so it needs an unrolled "
+                           "Bézier key (bez…, dc or bern)",
+                           method_names[key->method]);
+    if (!missing && key->method == SC_METHOD_SUBDIV && key->start != SC_START_MID)
+        return sc_fail_key(err, text,
+                           "subdiv starts from the whole sub-patch and takes no start value: "
+                           "write 'mid' for the start field");
     if (missing)
         return sc_fail_key(err, text, "%s not implemented yet", missing);
     return SC_OK;

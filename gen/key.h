@@ -50,13 +50,16 @@ typedef enum scg_eval_form {
  * iterations per crossing (1 … SCG_MAX_TRIM_ITERS). A key never holds
  * SC_TRIM_DEFAULT. */
 
-typedef enum scg_method {
-    SCG_METHOD_NEWTON = 0,    /* "newton" */
-    SCG_METHOD_BROYDEN,       /* "broyden" (reserved) */
-    SCG_METHOD_BCLIP,         /* "bclip" (reserved) */
-    SCG_METHOD_SUBDIV,        /* "subdiv" (reserved) */
-    SCG_METHOD_HYBRID         /* "hybrid" (reserved) */
-} scg_method;
+/* The method is the option's sc_method (splinecast_options.h): "newton",
+ * "broyden", "bclip" (reserved), "subdiv", "hybrid". A key never holds
+ * SC_METHOD_DEFAULT. subdiv and hybrid need an unrolled Bézier key (bez,
+ * dc or bern); subdiv (and bclip) take the start "mid" only, since they
+ * start from the whole sub-patch, so that no two keys name one program.
+ * For subdiv, itN is the depth of the stack of parameter intervals; the
+ * number of subdivision steps is SCG_SUBDIV_STEPS_PER_LEVEL times it
+ * (docs/variant-key.md). */
+#define SCG_SUBDIV_STEPS_PER_LEVEL 8
+#define SCG_DEFAULT_SUBDIV_DEPTH 24
 
 /* The start is the option's sc_start: SC_START_MID "mid" (centre of the
  * sub-patch domain), SC_START_CPMAP "cp" (interpolated hull-vertex
@@ -98,7 +101,7 @@ typedef struct scg_key {
     sc_trim_method trim;      /* never SC_TRIM_DEFAULT */
     int trim_degree;          /* 1 … SCG_MAX_DEGREE when trimmed, else 0 */
     int trim_iters;           /* 1 … SCG_MAX_TRIM_ITERS when trimmed, else 0 */
-    scg_method method;
+    sc_method method;         /* never SC_METHOD_DEFAULT */
     sc_start start;           /* never SC_START_DEFAULT */
     int max_iters;            /* 1 … SCG_MAX_ITERS */
     int tol_milli;            /* tolerance in 1/1000 pixel footprint, >= 1 */

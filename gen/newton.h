@@ -1,11 +1,15 @@
-/* newton.h — the Newton intersection metaprogram (newton.c). */
+/* newton.h — Newton's method for the intersection skeleton (newton.c). */
 #ifndef SCG_NEWTON_H
 #define SCG_NEWTON_H
 
-#include "ir.h"
+#include "intersect.h"
 
-/* Writes the whole intersection program for a Newton key (checked by
- * scg_key_check) at the builder's end. */
-void scg_build_newton(scg_builder *b, const scg_key *key);
+/* The whole method: variables from uv0, then the key's maximum iterations
+ * of scg_newton_step. */
+void scg_method_newton(scg_isect *c, scg_value uv0, scg_value behind);
+
+/* One Newton step from uv_var (a step function for scg_isect_repeat):
+ * updates uv, iters and done, and converged_var when the caller set one. */
+void scg_newton_step(scg_isect *c, void *user);
 
 #endif

@@ -1,7 +1,21 @@
 /* program.c — from a key to an optimised program: the metaprogram the key
  * names, validation, then the pass list (optimize.c) with a hook after
  * every stage (--dump-ir). */
+#include "broyden.h"
+#include "hybrid.h"
 #include "newton.h"
+#include "subdiv.h"
+
+/* The iteration of each method, by the key's method field. */
+static scg_method_fn method_fn(const scg_key *key)
+{
+    switch (key->method) {
+    case SC_METHOD_BROYDEN: return scg_method_broyden;
+    case SC_METHOD_SUBDIV: return scg_method_subdiv;
+    case SC_METHOD_HYBRID: return scg_method_hybrid;
+    default: return scg_method_newton;
+    }
+}
 
 int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
 {
@@ -11,7 +25,7 @@ int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
     scg_program *prog = scg_program_create(key);
     scg_builder b;
     scg_builder_init(&b, prog);
-    scg_build_newton(&b, key);
+    scg_build_intersection(&b, key, method_fn(key));
     if (scg_validate(prog, err) != SC_OK) {
         scg_program_free(prog);
         return SC_FAIL;

@@ -352,8 +352,9 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
         sc_api_check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_keys_desc.max_iters", err) ||
         sc_api_check_enum(desc->termination, SC_TERMINATION_MANUAL_BOTH + 1,
                    "sc_keys_desc.termination", err) ||
-        sc_api_check_enum(desc->start, SC_START_CPMAP + 1, "sc_keys_desc.start", err) ||
+        sc_api_check_enum(desc->start, SC_START_VIEW + 1, "sc_keys_desc.start", err) ||
         sc_api_check_enum(desc->trim, SC_TRIM_NONE + 1, "sc_keys_desc.trim", err) ||
+        sc_api_check_enum(desc->method, SC_METHOD_HYBRID + 1, "sc_keys_desc.method", err) ||
         sc_api_check_tolerance(desc->tolerance_px, "sc_keys_desc.tolerance_px", &opts->tol_milli, err))
         return SC_FAIL;
     if (desc->outputs & ~(unsigned)SCG_OUTPUT_ALL)
@@ -369,6 +370,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->termination = desc->termination;
     opts->outputs = desc->outputs;
     opts->skip_undrawable = desc->skip_undrawable != 0;
+    opts->method = desc->method;
     return desc->like ? like_options(desc->like, opts, err) : SC_OK;
 }
 

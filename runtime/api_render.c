@@ -138,7 +138,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     if (sc_api_check_enum(d->hull_split, SC_SPLIT_UNIFORM + 1, "sc_renderer_desc.hull_split", err) ||
         sc_api_check_int(d->hull_divisions, 0, SC_MAX_HULL_DIVISIONS, "sc_renderer_desc.hull_divisions", err) ||
         sc_api_check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
-        sc_api_check_enum(d->start, SC_START_CPMAP + 1, "sc_renderer_desc.start", err) ||
+        sc_api_check_enum(d->start, SC_START_VIEW + 1, "sc_renderer_desc.start", err) ||
         sc_api_check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
         sc_api_check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
         sc_api_check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
@@ -149,6 +149,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         sc_api_check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
         sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
         sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
+        sc_api_check_enum(d->method, SC_METHOD_HYBRID + 1, "sc_renderer_desc.method", err) ||
         sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
         return SC_FAIL;
     if (!(d->hull_tolerance >= 0 && d->hull_tolerance < 1))
@@ -170,6 +171,7 @@ static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->order = d->order;
     r->batch_hulls = d->batch_hulls;
     r->gpu_memory_budget = d->gpu_memory_budget;
+    r->method = d->method;
     return SC_OK;
 }
 

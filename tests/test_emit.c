@@ -402,11 +402,11 @@ TEST(emit_gen_command)
     CHECK_CONTAINS(errors, "bez3x3-nonsense");
     free(errors);
     snprintf(cmd, sizeof cmd,
-             "%s gen --key %s bez3x3-poly-dc-trim0-broyden-mid-it4-tol0.25-ert0-out.shade -o "
+             "%s gen --key %s bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade -o "
              "%s/gen/bad",
              test_cli, bicubic, test_tmpdir());
     CHECK_INT(test_run(cmd, &out, &errors), 1);
-    CHECK_CONTAINS(errors, "broyden");
+    CHECK_CONTAINS(errors, "bclip");
     CHECK_STR(out, "");
     snprintf(path, sizeof path, "%s/gen/bad", test_tmpdir());
     CHECK_INT(file_size(path), -1);

@@ -193,14 +193,20 @@ TEST(glslang_family_high_degrees)
 
 TEST(glslang_other_key_options_validate)
 {
-    /* Every output, start, early-ray-termination mode and evaluation form
-     * the compiler builds, on one degree pair. */
+    /* Every output, start, early-ray-termination mode, evaluation form and
+     * method the compiler builds, on one degree pair. */
     static const char *const texts[] = {
         "bez3x3-poly-dc-trim0-newton-cp-it4-tol0.25-ert2-out.shade.aov.iters.uv",
         "bez2x4-rat-bern-trim0-newton-mid-it8-tol1-ert1-out.aov",
         "nurbs3x3-rat-dc-trim0-newton-mid-it4-tol0.25-ert0-out.shade.aov",
         "bezdyn-rat-loop-trim0-newton-mid-it4-tol0.25-ert0-out.shade",
         "nurbsdyn-poly-loop-trim0-newton-cp-it4-tol0.25-ert0-out.iters",
+        "bez3x3-poly-dc-trim0-broyden-mid-it6-tol0.05-ert1-out.shade.aov",
+        "nurbsdyn-rat-loop-fast2i16-broyden-cp-it6-tol0.05-ert2-out.shade",
+        "bez3x3-rat-dc-fast3i16-subdiv-mid-it24-tol0.05-ert2-out.shade.aov",
+        "bez2x4-poly-bern-trim0-subdiv-mid-it8-tol1-ert0-out.iters",
+        "bez3x3-poly-dc-fast2i16-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
+        "bez4x2-rat-bern-trim0-hybrid-mid-it4-tol0.25-ert2-out.shade",
     };
     for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
         scg_key key;

@@ -279,8 +279,8 @@ static bool run_rays(const char *key_text, const sc_surface *s, int rays,
 /* Every degree pair p×q with p, q in [lo, hi], polynomial and rational:
  * `kind` "bez" or "nurbs" (with `spans` knot spans per direction), `eval`
  * dc, bern or loop (then the key's degrees are "dyn"). */
-static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int spans, int iters,
-                         int rays_per_case, double max_miss, double max_far)
+static void method_sweep(const char *method, const char *kind, const char *eval, int lo, int hi,
+                         int spans, int iters, int rays_per_case, double max_miss, double max_far)
 {
     unsigned long long rng = 12345;
     kstats total = {0};
@@ -295,8 +295,8 @@ static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int
                     snprintf(degrees, sizeof degrees, "dyn");
                 else
                     snprintf(degrees, sizeof degrees, "%dx%d", p, q);
-                snprintf(key, sizeof key, "%s%s-%s-%s-trim0-newton-mid-it%d-tol0.25-ert0-out.shade",
-                         kind, degrees, rational ? "rat" : "poly", eval, iters);
+                snprintf(key, sizeof key, "%s%s-%s-%s-trim0-%s-mid-it%d-tol0.25-ert0-out.shade",
+                         kind, degrees, rational ? "rat" : "poly", eval, method, iters);
                 kstats st = {0};
                 bool ok = run_rays(key, &s, rays_per_case, &rng, &st);
                 sc_surface_free(&s);
@@ -308,14 +308,20 @@ static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int
                 total.nearest_out_of_reach += st.nearest_out_of_reach;
                 total.worst_ratio = fmax(total.worst_ratio, st.worst_ratio);
             }
-    fprintf(stderr, "  %s %s %dx%d..%dx%d it%d: %d rays, %d converged hits, %.2f%% not converged, "
+    fprintf(stderr, "  %s %s %s %dx%d..%dx%d it%d: %d rays, %d converged hits, %.2f%% not converged, "
             "%.2f%% on a far sheet, %d with the nearest hit out of reach, worst error %.3g of the "
-            "bound\n", kind, eval, lo, lo, hi, hi, iters, total.rays, total.hits,
+            "bound\n", method, kind, eval, lo, lo, hi, hi, iters, total.rays, total.hits,
             100.0 * total.misses / total.rays, 100.0 * total.far_sheet / total.hits,
             total.nearest_out_of_reach, total.worst_ratio);
     CHECK(total.rays > 0);
     CHECK((double)total.misses / total.rays <= max_miss);
     CHECK((double)total.far_sheet / total.hits <= max_far);
+}
+
+static void degree_sweep(const char *kind, const char *eval, int lo, int hi, int spans, int iters,
+                         int rays_per_case, double max_miss, double max_far)
+{
+    method_sweep("newton", kind, eval, lo, hi, spans, iters, rays_per_case, max_miss, max_far);
 }
 
 /* The rays that still do not converge are geometric, not numeric: random
@@ -452,4 +458,44 @@ TEST(kernel_newton_grazing_teapot_pixel)
     scg_program_free(prog);
     sc_surface_free(&world);
     sc_scene_free(&scene);
+}
+
+/* Broyden's method (seed 003) on the same kind of random patches and rays
+ * as Newton's sweeps, unrolled and generic: every converged hit within the
+ * bound of the reference's. Measured: 0.70 % not converged (bez dc, 5,880
+ * rays), 0.67 % (nurbs, 3 spans), 0.20 % (bezdyn), worst error 0.38 of
+ * the bound; Newton's sweep leaves 1.02 % (docs/compiler.md). */
+TEST(kernel_broyden_bezier_degrees)
+{
+    method_sweep("broyden", "bez", "dc", 1, 7, 1, 8, 60, 0.02, 0.01);
+}
+
+TEST(kernel_broyden_nurbs_and_generic)
+{
+    method_sweep("broyden", "nurbs", "dc", 1, 5, 3, 8, 30, 0.04, 0.01);
+    method_sweep("broyden", "bez", "loop", 1, 5, 1, 8, 20, 0.02, 0.01);
+}
+
+/* Object-space subdivision (seed 002) on the same random patches and rays,
+ * unrolled (dc and bern): every hit within the bound of the reference's,
+ * and no miss (each ray is aimed at a point of its sub-patch). Measured
+ * (1×1 … 7×7, 20 rays a pair): 0 of 1,960 rays missed, one hit lay on a
+ * far sheet whose nearer crossing was in the overlap Newton may enter but
+ * outside the sub-patch that subdivision searches; worst error 0.55 of
+ * the bound. Fewer rays here: each runs up to 192 subdivision steps in the
+ * interpreter. */
+TEST(kernel_subdiv_bezier_degrees)
+{
+    method_sweep("subdiv", "bez", "dc", 1, 5, 1, 24, 12, 0.0, 0.01);
+    method_sweep("subdiv", "bez", "bern", 2, 3, 1, 24, 10, 0.0, 0.01);
+}
+
+/* The hybrid (Newton, then subdivision where Newton does not converge) on
+ * the same patches and rays: measured 0.35 % of 2,000 rays missed (Newton
+ * alone about 1 %): the fallback's budget of 2 steps a level
+ * (hybrid.c) ends some searches early; every hit within 0.075 of the
+ * bound. */
+TEST(kernel_hybrid_bezier_degrees)
+{
+    method_sweep("hybrid", "bez", "dc", 1, 5, 1, 8, 40, 0.005, 0.01);
 }

@@ -19,6 +19,12 @@ typedef struct bench_result {
 /* Makes a renderer, draws a warm-up frame and `frames` timed ones. */
 int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
               const sc_camera_desc *cam, int frames, bench_result *out, sc_error *err);
+/* The figures of a renderer already timed: the median of its `frames`
+ * times (sorted in place), and covered pixels, iterations and the
+ * renderer's counts from a frame read back now; warm_up_ms beyond a
+ * frame's time counts as compiling. */
+int bench_finish(sc_renderer_id r, double *times, int frames, double warm_up_ms,
+                 bench_result *out, sc_error *err);
 /* One `bench variant=…` line on stdout; `extra` goes after the variant. */
 void bench_print(const char *variant, const char *extra, const bench_result *r);
 
@@ -42,5 +48,14 @@ int bench_sweep_parse_batches(const char *text, bench_sweep *sweep);
 /* Times every scene under every combination; returns the exit status. */
 int bench_sweep_run(sc_context_id ctx, const bench_sweep *sweep, sc_renderer_desc desc,
                     const char *camera_arg, int width, int height, int frames);
+
+/* The methods side by side (bench_methods.c): `--method A,B,…` parsed
+ * into `methods` (0 or the exit status of a usage error), then one run
+ * with every timed frame drawn by each method in turn. */
+#define BENCH_MAX_METHODS 8
+int bench_methods_parse(const char *text, sc_method *methods, int *count);
+int bench_methods_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                      const sc_camera_desc *cam, int frames, const sc_method *methods,
+                      int count);
 
 #endif

@@ -31,10 +31,19 @@ int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc
         status = sc_draw(r, cam, err);
         times[f] = 1e3 * (sc_now() - t0);
     }
+    if (status == SC_OK)
+        status = bench_finish(r, times, frames, warm_up, out, err);
+    free(times);
+    sc_destroy_renderer(r);
+    return status;
+}
+
+int bench_finish(sc_renderer_id r, double *times, int frames, double warm_up_ms,
+                 bench_result *out, sc_error *err)
+{
     sc_frame_id frame = {0};
     sc_frame_info info;
-    if (status == SC_OK)
-        status = sc_read_frame(r, &frame, err);
+    int status = sc_read_frame(r, &frame, err);
     if (status == SC_OK)
         status = sc_query_frame_info(frame, &info, err);
     if (status == SC_OK)
@@ -49,11 +58,9 @@ int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc
             }
         out->iters_mean = out->covered ? iters / (double)out->covered : 0;
         out->mpix_s = out->frame_ms > 0 ? (double)out->covered / (out->frame_ms * 1e3) : 0;
-        out->compile_ms = out->stats.compile_ms + fmax(warm_up - out->frame_ms, 0);
+        out->compile_ms = out->stats.compile_ms + fmax(warm_up_ms - out->frame_ms, 0);
     }
     sc_destroy_frame(frame);
-    free(times);
-    sc_destroy_renderer(r);
     return status;
 }
 

@@ -35,7 +35,13 @@ static const char usage[] =
     "  --camera EX,EY,EZ,TX,TY,TZ,FOVY   view (default: framing the scene)\n"
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --hull uniform:N|adaptive:TOL   proxy hulls (default adaptive:0.003)\n"
-    "  --init mid|cpmap       Newton start (default cpmap)\n"
+    "  --init mid|cpmap|view  Newton start (default cpmap)\n"
+    "  --method LIST          intersection method (newton); a comma list of\n"
+    "                         newton, broyden, bclip, subdiv, hybrid compares\n"
+    "                         them on SCENE, each timed frame drawn by every\n"
+    "                         method in turn: one line `bench variant=method\n"
+    "                         method=M ...` each, then the frame time of each\n"
+    "                         over the first's\n"
     "  --frames N             timed frames (default 5)\n"
     "  --ert LIST             early ray termination: all or a comma list of none,\n"
     "                         conservative, manual, manual-both\n"
@@ -138,6 +144,8 @@ int cmd_bench(int argc, char **argv)
     int width = 1024, height = 1024, frames = 5, deg_lo = 0, deg_hi = 0, status = 0;
     sc_error err = {0};
     bench_sweep sweep = {0};
+    sc_method methods[BENCH_MAX_METHODS];
+    int nmethods = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
@@ -162,10 +170,12 @@ int cmd_bench(int argc, char **argv)
                                 &desc.hull_tolerance, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
-            i++;
-            if (strcmp(argv[i], "mid") && strcmp(argv[i], "cpmap"))
-                return cli_usage_error("bench", "--init takes mid or cpmap, not '%s'", argv[i]);
-            desc.start = !strcmp(argv[i], "mid") ? SC_START_MID : SC_START_CPMAP;
+            if (cli_start_parse(argv[++i], &desc.start, &err) != SC_OK)
+                return cli_usage_error("bench", "%s", err.message);
+        } else if (!strcmp(a, "--method") && next) {
+            if ((status = bench_methods_parse(argv[++i], methods, &nmethods)) != 0)
+                return status;
+            desc.method = methods[0];
         } else if (!strcmp(a, "--frames") && next) {
             long n = strtol(argv[++i], &end, 10);
             if (end == argv[i] || *end || n < 1 || n > 1000)
@@ -228,6 +238,8 @@ int cmd_bench(int argc, char **argv)
     status = 0;
     if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
         status = cli_usage_error("bench", "--camera: %s", err.message);
+    } else if (nmethods > 1) {
+        status = bench_methods_run(ctx, scene, desc, &cam, frames, methods, nmethods);
     } else {
         bench_result specialized, generic;
         if (bench_run(ctx, scene, &desc, &cam, frames, &specialized, &err) != SC_OK) {

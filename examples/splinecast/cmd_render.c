@@ -26,9 +26,12 @@ static const char usage[] =
     "  --hull uniform:N|adaptive:TOL   proxy hulls: N x N per Bezier patch, or\n"
     "                         split until flat within TOL x the scene's size\n"
     "                         (default adaptive:0.003)\n"
-    "  --init mid|cpmap       Newton start: the sub-patch's middle or the\n"
+    "  --init mid|cpmap|view  Newton start: the sub-patch's middle or the\n"
     "                         control-point parameters interpolated over the hull\n"
-    "                         (default cpmap)\n"
+    "                         (default cpmap; view is not implemented)\n"
+    "  --method newton|broyden|bclip|subdiv|hybrid   intersection method\n"
+    "                         (default newton; bclip is not implemented; with\n"
+    "                         subdiv, --iters is the stack depth, default 24)\n"
     "  --view shade|uv|iters|normal|depth|hull\n"
     "                         what the PNG shows (default shade); hull: each\n"
     "                         proxy hull in its own colour, dim where its ray\n"
@@ -110,13 +113,11 @@ int cmd_render(int argc, char **argv)
                                 &desc.hull_tolerance, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--init") && next) {
-            i++;
-            if (!strcmp(argv[i], "mid"))
-                desc.start = SC_START_MID;
-            else if (!strcmp(argv[i], "cpmap"))
-                desc.start = SC_START_CPMAP;
-            else
-                return cli_usage_error("render", "--init takes mid or cpmap, not '%s'", argv[i]);
+            if (cli_start_parse(argv[++i], &desc.start, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
+        } else if (!strcmp(a, "--method") && next) {
+            if (cli_method_parse(argv[++i], &desc.method, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--trim") && next) {
             if (cli_trim_parse(argv[++i], &desc.trim, &desc.trim_iters, &err) !=
                 SC_OK)

@@ -25,6 +25,11 @@ static const spelling terminations[] = {
 static const spelling orders[] = {
     {"front-to-back", SC_HULL_ORDER_FRONT_TO_BACK}, {"by-program", SC_HULL_ORDER_BY_PROGRAM},
     {"hybrid", SC_HULL_ORDER_HYBRID}};
+static const spelling methods[] = {
+    {"newton", SC_METHOD_NEWTON}, {"broyden", SC_METHOD_BROYDEN}, {"bclip", SC_METHOD_BCLIP},
+    {"subdiv", SC_METHOD_SUBDIV}, {"hybrid", SC_METHOD_HYBRID}};
+static const spelling starts[] = {
+    {"mid", SC_START_MID}, {"cpmap", SC_START_CPMAP}, {"view", SC_START_VIEW}};
 static const spelling backends[] = {
     {"egl", SC_BACKEND_EGL}, {"osmesa", SC_BACKEND_OSMESA}, {"default", SC_BACKEND_DEFAULT}};
 
@@ -157,4 +162,27 @@ int cli_hulls_parse(const char *text, sc_hull_split *split, int *divisions, doub
         return SC_OK;
     }
     return fail(err, "hull '%s': expected uniform:N or adaptive:TOL", text);
+}
+
+int cli_method_parse(const char *text, sc_method *out, sc_error *err)
+{
+    int i = lookup(methods, COUNT(methods), text, strlen(text));
+    if (i < 0)
+        return fail(err, "unknown method '%s' (newton, broyden, bclip, subdiv or hybrid)", text);
+    *out = (sc_method)methods[i].value;
+    return SC_OK;
+}
+
+const char *cli_method_name(sc_method method)
+{
+    return name_of(methods, COUNT(methods), method, "default");
+}
+
+int cli_start_parse(const char *text, sc_start *out, sc_error *err)
+{
+    int i = lookup(starts, COUNT(starts), text, strlen(text));
+    if (i < 0)
+        return fail(err, "unknown start '%s' (mid, cpmap or view)", text);
+    *out = (sc_start)starts[i].value;
+    return SC_OK;
 }

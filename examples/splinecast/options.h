@@ -22,6 +22,13 @@ const char *cli_termination_name(sc_ray_termination termination);
 /* front-to-back, by-program, hybrid; and back. */
 int cli_order_parse(const char *text, sc_hull_order *out, sc_error *err);
 const char *cli_order_name(sc_hull_order order);
+/* newton, broyden, bclip, subdiv, hybrid; and back ("default" for
+ * SC_METHOD_DEFAULT). The library refuses what is not implemented, by
+ * name. */
+int cli_method_parse(const char *text, sc_method *out, sc_error *err);
+const char *cli_method_name(sc_method method);
+/* mid, cpmap, view. */
+int cli_start_parse(const char *text, sc_start *out, sc_error *err);
 /* egl, osmesa, default; and back. */
 int cli_backend_parse(const char *text, sc_backend *out, sc_error *err);
 const char *cli_backend_name(sc_backend backend);

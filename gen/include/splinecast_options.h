@@ -19,6 +19,21 @@ extern "C" {
 #define SC_MAX_ITERS 64            /* Newton iterations */
 #define SC_MAX_DEGREE 16           /* highest surface degree a program draws */
 
+/* How a ray meets a patch (keys: newton, broyden, bclip, subdiv, hybrid;
+ * docs/variant-key.md, docs/compiler.md). */
+typedef enum sc_method {
+    SC_METHOD_DEFAULT = 0, /* newton */
+    SC_METHOD_NEWTON,      /* Newton iteration on the ray's two planes */
+    SC_METHOD_BROYDEN,     /* Broyden's method: the Jacobian of the first
+                              evaluation, then rank-one updates */
+    SC_METHOD_BCLIP,       /* Bézier clipping: keys parse it, but it is not
+                              implemented, so every call refuses it */
+    SC_METHOD_SUBDIV,      /* object-space subdivision of the sub-patch
+                              (Dammertz & Keller) with a stack of intervals */
+    SC_METHOD_HYBRID       /* Newton, and subdivision in the same hull where
+                              Newton does not converge inside it */
+} sc_method;
+
 /* Where Newton's method starts (keys: mid, cp, view). */
 typedef enum sc_start {
     SC_START_DEFAULT = 0,  /* cpmap */
@@ -26,7 +41,8 @@ typedef enum sc_start {
     SC_START_CPMAP,        /* at the control-point parameters interpolated
                               over the hull */
     SC_START_VIEW          /* view-dependent: keys parse it, but it is not
-                              implemented, so every call refuses it */
+                              implemented, so every call that builds a
+                              program refuses it by name */
 } sc_start;
 
 /* How trimmed surfaces are trimmed (keys: fastNiC, clipNiC, leftNiC, trim0). */

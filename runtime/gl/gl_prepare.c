@@ -26,6 +26,7 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
         .trim_iters = desc->trim_iters,
         .termination = desc->ert,
         .outputs = view_outputs(desc->view),
+        .method = desc->method,
     };
     sc_surface_key(s, &opts, key);
     if (desc->generic && key->eval != SCG_EVAL_LOOP) {

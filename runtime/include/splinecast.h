@@ -212,6 +212,8 @@ typedef struct sc_keys_desc {
                                   early ray termination (its ertN as it is)
                                   and outputs the keys take where the fields
                                   above are zero (`gen --like`) */
+    sc_method method;          /* intersection method (newton), as
+                                  sc_renderer_desc.method */
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of
@@ -369,6 +371,10 @@ typedef struct sc_renderer_desc {
                                   for it and not shared with the context's
                                   cache, so that compile_ms measures
                                   compiling them (benchmarks) */
+    sc_method method;          /* intersection method (newton); bclip is
+                                  refused (not implemented). With subdiv,
+                                  max_iters is the depth of the subdivision
+                                  stack (24) and start is ignored */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data

@@ -48,13 +48,18 @@ typedef struct sc_key_options {
      * of scg_key_default (key.h: cp, it6, tol0.05) and the two above. */
     int max_iters;
     int tol_milli;
-    sc_start start;           /* SC_START_DEFAULT: SCG_DEFAULT_START */
+    sc_start start;           /* SC_START_DEFAULT: SCG_DEFAULT_START; subdiv
+                                 keys always take mid */
     sc_ray_termination termination; /* keys' ert through sc_key_ert */
     unsigned outputs;         /* 0: SC_KEY_DEFAULT_OUTPUTS */
     /* 0 (default): a surface the GPU programs cannot draw makes
      * sc_scene_keys fail; 1: it gets no key and a warning through sc_log,
      * so that a scene can be described whatever it holds (`info`). */
     int skip_undrawable;
+    /* The intersection method (SC_METHOD_DEFAULT: newton). With subdiv,
+     * max_iters is the subdivision stack depth (0:
+     * SCG_DEFAULT_SUBDIV_DEPTH). */
+    sc_method method;
 } sc_key_options;
 
 /* SC_OK when the GPU programs can draw surface i of the scene. Otherwise
