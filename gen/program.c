@@ -2,6 +2,7 @@
  * names, validation, then the pass list (optimize.c) with a hook after
  * every stage (--dump-ir). */
 #include "newton.h"
+#include "tri_newton.h"
 
 int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
 {
@@ -11,7 +12,10 @@ int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
     scg_program *prog = scg_program_create(key);
     scg_builder b;
     scg_builder_init(&b, prog);
-    scg_build_newton(&b, key);
+    if (key->kind == SCG_PATCH_TRIANGLE)
+        scg_build_tri_newton(&b, key);
+    else
+        scg_build_newton(&b, key);
     if (scg_validate(prog, err) != SC_OK) {
         scg_program_free(prog);
         return SC_FAIL;

@@ -17,14 +17,18 @@ extern "C" {
 #define SC_MAX_TRIM_ITERS 64       /* clipping iterations per trim crossing */
 #define SC_MAX_HULL_DIVISIONS 64   /* uniform hulls: sub-patches per side */
 
-/* Where Newton's method starts (keys: mid, cp, view). */
+/* Where Newton's method starts (keys: mid, cp, view, secure). */
 typedef enum sc_start {
     SC_START_DEFAULT = 0,  /* cpmap */
     SC_START_MID,          /* Newton starts at the middle of the sub-patch */
     SC_START_CPMAP,        /* at the control-point parameters interpolated
                               over the hull */
-    SC_START_VIEW          /* view-dependent: keys parse it, but it is not
+    SC_START_VIEW,         /* view-dependent: keys parse it, but it is not
                               implemented, so every call refuses it */
+    SC_START_SECURE        /* triangular patches (tri keys) only: the four
+                              secure starts of seed 004 on the univariate
+                              quartic along the projected ray (0, its
+                              inflection points, 1), iterated together */
 } sc_start;
 
 /* How trimmed surfaces are trimmed (keys: fastNiC, clipNiC, leftNiC, trim0). */
