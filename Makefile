@@ -54,7 +54,7 @@ $(BUILD)/examples/%.o:          INC = $(INC_API)
 # it uses the library as any program would: the files listed here see only
 # the public include paths (a use of an internal header is a compile
 # error); the others still see everything until they are ported.
-CLI_PUBLIC = main.c cli.c options.c cmd_diff.c
+CLI_PUBLIC = main.c cli.c options.c cmd_diff.c cmd_terrain.c cmd_splines.c
 $(patsubst %.c,$(BUILD)/examples/splinecast/%.o,$(CLI_PUBLIC)): INC = -Iruntime -Igen/base
 $(BUILD)/tests/%.o:             INC = $(INC_API) -Iruntime/terrain -Itests -Iexamples/splinecast
 

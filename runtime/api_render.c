@@ -250,6 +250,9 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .gpu_bytes = stats.gpu_bytes,
         .uploaded_bytes = stats.bytes_uploaded,
         .compile_ms = stats.compile_ms,
+        .draw_calls = stats.draw_calls,
+        .batches = stats.readbacks,
+        .culled_hulls = stats.culled_hulls,
     };
     return SC_OK;
 }
@@ -327,8 +330,9 @@ int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id
     frame_object *f = sc_alloc(1, sizeof *f);
     double t0 = sc_now();
     sc_image image = {0};
-    if (sc_renderer_draw(r->renderer, &cam, err) != SC_OK ||
-        sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
+    int drawn = sc_renderer_draw(r->renderer, &cam, err);
+    f->draw_ms = 1e3 * (sc_now() - t0);
+    if (drawn != SC_OK || sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
         sc_image_free(&image);
         sc_aov_free(&f->aov);
         free(f);
@@ -430,6 +434,7 @@ int sc_query_frame_info(sc_frame_id frame, sc_frame_info *info, sc_error *err)
         .normal = a->normal,
         .iters = a->has_iters ? a->iters : NULL,
         .render_ms = f->render_ms,
+        .draw_ms = f->draw_ms,
     };
     memcpy(info->eye, a->camera.eye, sizeof info->eye);
     memcpy(info->target, a->camera.target, sizeof info->target);

@@ -59,6 +59,17 @@ typedef struct sc_scene_desc {
     size_t size;           /* bytes of text */
     const char *name;      /* with text: names it in messages; its extension
                               picks the reader */
+    /* A terrain instead of a scene file (docs/splines.md): triangular
+     * quartic patches from a grid of heights, drawn with a `tri` key. */
+    const char *heights;   /* a PGM (P2/P5, 8/16-bit) or CSV grid of heights;
+                              refused with file:line when malformed */
+    int franke;            /* instead of heights: Franke's function at N data
+                              points on [0,1]² (144, 576, 2304, …) */
+    sc_terrain_scheme scheme;  /* the spline (c2) */
+    double spacing;        /* heights: distance between samples (the grid
+                              spans 1 along its longer side) */
+    double height_scale;   /* heights: factor on the heights (a PGM's gray
+                              levels are divided by maxval first) (1) */
 } sc_scene_desc;
 
 int sc_make_scene(const sc_scene_desc *desc, sc_scene_id *out, sc_error *err);
@@ -72,9 +83,34 @@ typedef struct sc_scene_info {
     int max_degree;          /* highest surface degree in either direction */
     int skipped;             /* entities the reader did not turn into geometry */
     double lo[3], hi[3];     /* world-space bounding box of the control points */
+    int terrain_patches;     /* a terrain's triangular patches (0 otherwise);
+                                its one surface stands for it */
 } sc_scene_info;
 
 int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);
+
+/* "c0", "c1", "c2", "linear" (SC_SCHEME_DEFAULT is c2). */
+const char *sc_terrain_scheme_name(sc_terrain_scheme scheme);
+int sc_parse_terrain_scheme(const char *name, sc_terrain_scheme *out, sc_error *err);
+
+/* The paper's Table I protocol (docs/splines.md): Franke's function
+ * sampled at `points` data sites, the scheme's spline built from them,
+ * and the error measured at `sites` uniformly distributed points,
+ * relative to the largest |f| among the data. Zero means default. */
+typedef struct sc_spline_error_desc {
+    sc_terrain_scheme scheme;  /* c2 */
+    int points;                /* N, required: 144, 576, 2304, … */
+    int sites;                 /* 1000000 */
+} sc_spline_error_desc;
+
+typedef struct sc_spline_error_info {
+    int points, patches;
+    double rel_rms, rel_max;
+    char line[160];            /* "splines scheme=S points=N patches=P rel_rms=X rel_max=Y" */
+} sc_spline_error_info;
+
+int sc_measure_spline_error(const sc_spline_error_desc *desc, sc_spline_error_info *out,
+                            sc_error *err);
 
 /* ---- surfaces --------------------------------------------------------- */
 
@@ -278,6 +314,11 @@ typedef struct sc_renderer_info {
                                   the last sc_update_surface: patch data and
                                   hull vertices (and colours when made) */
     double compile_ms;         /* generating, validating, compiling, linking */
+    /* Of the last frame drawn: */
+    int draw_calls;
+    int batches;               /* read-backs of the nearest distances between
+                                  batches (manual early ray termination) */
+    int culled_hulls;          /* hulls skipped whole: behind the hits so far */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
@@ -326,6 +367,9 @@ typedef struct sc_frame_info {
     const float *normal;       /* 3 per pixel, unit, facing the viewer */
     const float *iters;        /* iterations; NULL for reference frames */
     double render_ms;          /* drawing and reading back, or the reference */
+    double draw_ms;            /* drawing alone, until the GPU finished it,
+                                  without the read-back; 0 for frames not
+                                  drawn on the GPU */
 } sc_frame_info;
 
 int sc_query_frame_info(sc_frame_id frame, sc_frame_info *info, sc_error *err);

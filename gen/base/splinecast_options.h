@@ -76,7 +76,18 @@ typedef enum sc_hull_split {
     SC_SPLIT_UNIFORM           /* hull_divisions × hull_divisions per patch */
 } sc_hull_split;
 
-/* The order hulls are drawn in each frame (default: hybrid). */
+/* The quartic spline a terrain's heights become (seed 004, section IV;
+ * docs/splines.md). */
+typedef enum sc_terrain_scheme {
+    SC_SCHEME_DEFAULT = 0,         /* c2 */
+    SC_SCHEME_C0,                  /* interpolates at every quartic domain point */
+    SC_SCHEME_C1,                  /* local C1 quasi-interpolant */
+    SC_SCHEME_C2,                  /* the quartic C2 box spline */
+    SC_SCHEME_LINEAR               /* piecewise linear, degree-elevated */
+} sc_terrain_scheme;
+
+/* The order hulls are drawn in each frame (default: hybrid; for terrains
+ * the Manhattan sets of seed 004, section VII, unless an order is given). */
 typedef enum sc_hull_order {
     SC_HULL_ORDER_DEFAULT = 0,
     SC_HULL_ORDER_FRONT_TO_BACK,   /* strictly by nearest hull depth */
