@@ -13,7 +13,7 @@
 /* One frame of Franke's C2 terrain (N = 144: 288 patches) with the given
  * order, compared with the reference. */
 static void render_franke(sc_context_id ctx, sc_scene_id scene, sc_hull_order order,
-                          sc_comparison *cmp, long *hits)
+                          const char *view, sc_comparison *cmp, long *hits)
 {
     sc_error err = {0};
     sc_renderer_id renderer;
@@ -24,7 +24,7 @@ static void render_franke(sc_context_id ctx, sc_scene_id scene, sc_hull_order or
     CHECK_INT(sc_query_renderer_keys(renderer, &key, 1, &count, &err), SC_OK);
     CHECK_INT(count, 1);
     CHECK_STR(key.text, "tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert1-out.shade.aov");
-    sc_camera_desc camera = {.width = 128, .height = 96, .text = "1.6,-1.2,1.4,0.5,0.5,0.2,35"};
+    sc_camera_desc camera = {.width = 128, .height = 96, .text = view};
     sc_frame_id gpu, ref;
     CHECK_INT(sc_render(renderer, &camera, &gpu, &err), SC_OK);
     CHECK_INT(sc_render_reference(scene, &camera, NULL, &ref, &err), SC_OK);
@@ -57,8 +57,9 @@ TEST(tri_gl_terrain_against_reference)
     }
     sc_comparison sets, plain;
     long sets_hits, plain_hits;
-    render_franke(ctx, scene, SC_HULL_ORDER_DEFAULT, &sets, &sets_hits);
-    render_franke(ctx, scene, SC_HULL_ORDER_FRONT_TO_BACK, &plain, &plain_hits);
+    const char *oblique = "1.6,-1.2,1.4,0.5,0.5,0.2,35";
+    render_franke(ctx, scene, SC_HULL_ORDER_DEFAULT, oblique, &sets, &sets_hits);
+    render_franke(ctx, scene, SC_HULL_ORDER_FRONT_TO_BACK, oblique, &plain, &plain_hits);
     printf("  %ld reference hits\n  sets: %s\n  front-to-back: %s\n", sets.reference_hits,
            sets.line, plain.line);
     CHECK(sets.reference_hits > 2000);
@@ -66,6 +67,15 @@ TEST(tri_gl_terrain_against_reference)
     CHECK(plain.fail_pct <= 0.1);
     CHECK_INT(sets_hits, plain_hits);
     CHECK(sets.normal_max_deg < 1);
+    /* From inside the prisms' box, where whole sets near the eye are
+     * culled: the sets after them are still drawn. */
+    const char *above = "0.5,0.02,1.1,0.5,0.6,0.3,60";
+    render_franke(ctx, scene, SC_HULL_ORDER_DEFAULT, above, &sets, &sets_hits);
+    render_franke(ctx, scene, SC_HULL_ORDER_FRONT_TO_BACK, above, &plain, &plain_hits);
+    printf("  above, sets: %s\n", sets.line);
+    CHECK(sets.reference_hits > 2000);
+    CHECK(sets.fail_pct <= 0.1);
+    CHECK_INT(sets_hits, plain_hits);
     sc_shutdown();
 }
 

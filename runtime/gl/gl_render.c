@@ -419,8 +419,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
         r->culled += culled;
         if (r->readbacks && !culled && batch < n)
             batch *= 2;
-        if (!drawn)
-            break;
+        if (!drawn)   /* all culled: a Manhattan set may end before the order does */
+            continue;
         submit_runs(r, nruns, first, nidx, &current);
         if (manual && p < n)
             refresh_nearest(r);
