@@ -61,6 +61,7 @@ static const char *start_words(sc_start start)
     case SC_START_MID: return "the centre of the hull's sub-patch domain";
     case SC_START_CPMAP: return "the control points' parameters, interpolated over the hull";
     case SC_START_VIEW: return "a view-dependent solve at the hull vertices";
+    case SC_START_SECURE: return "0, the inflection points and 1 of the quartic along the ray";
     case SC_START_DEFAULT: break;   /* never in a key */
     }
     return "?";
@@ -80,7 +81,9 @@ static const char *ert_words(scg_ert ert)
 static void describe_key(scg_text *out, const scg_key *key)
 {
     char degrees[32] = "of any degree";
-    if (key->eval != SCG_EVAL_LOOP)
+    if (key->kind == SCG_PATCH_TRIANGLE)
+        snprintf(degrees, sizeof degrees, "of degree %d", key->deg_u);
+    else if (key->eval != SCG_EVAL_LOOP)
         snprintf(degrees, sizeof degrees, "%dx%d", key->deg_u, key->deg_v);
     char trim[64] = "untrimmed";
     if (key->trim == SC_TRIM_CLIP)
@@ -94,12 +97,17 @@ static void describe_key(scg_text *out, const scg_key *key)
                  key->trim_degree);
     scg_text_printf(out, "// patch: %s %s, %s, %s\n", kind_words(key->kind), degrees,
                     key->rational ? "rational" : "polynomial", trim);
-    scg_text_printf(out, "// evaluation: %s\n", eval_words(key->eval));
+    int tri = key->kind == SCG_PATCH_TRIANGLE;
+    scg_text_printf(out, "// evaluation: %s\n",
+                    tri ? "blossoming to the polynomial along the projected ray, unrolled"
+                        : eval_words(key->eval));
     scg_text_printf(out,
                     "// method: %s, at most %d iteration%s,\n"
                     "//   tolerance %g pixel footprints\n"
                     "// start: %s\n",
-                    method_words(key->method), key->max_iters, key->max_iters == 1 ? "" : "s",
+                    tri ? "Newton iteration on it from four starts at once"
+                        : method_words(key->method),
+                    key->max_iters, key->max_iters == 1 ? "" : "s",
                     (double)scg_key_tolerance(key), start_words(key->start));
     scg_text_printf(out, "// depth: %s\n// outputs:", ert_words(key->ert));
     static const char *const output_words[] = {"shaded colour", "AOVs", "iterations view",

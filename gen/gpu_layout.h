@@ -49,6 +49,14 @@ typedef enum scg_texture {
 
 enum { SCG_RECORD_TEXELS = 4 };
 
+/* Triangular records (`tri` keys, gen/tri_newton.c): one per triangular
+ * height patch of degree n, the same four texels, of which the program
+ * reads +0 (cp_offset, (n+1)(n+2)/2, 1, surface id) and +3 (the centre).
+ * Its points are the patch's BB-coefficients as 3D points (domain point x,
+ * y and the height, re-centred, w = 1) in the order of sc_tri_index
+ * (runtime/terrain/tri_bezier.h): b_n00 first, b_00n last, so that the
+ * domain triangle is the xy of points 0, n(n+1)/2 and (n+1)(n+2)/2 − 1. */
+
 /* ---- trim blocks (docs/trimming.md) ----
  * The trim data of a surface is one block of RGBA32F texels appended to
  * sc_records after the records; every record of the surface names it in

@@ -19,7 +19,8 @@ static const char *const method_names[] = {
     [SC_METHOD_NEWTON] = "newton", [SC_METHOD_BROYDEN] = "broyden", [SC_METHOD_BCLIP] = "bclip",
     [SC_METHOD_SUBDIV] = "subdiv", [SC_METHOD_HYBRID] = "hybrid"};
 static const char *const start_names[] = {[SC_START_MID] = "mid", [SC_START_CPMAP] = "cp",
-                                          [SC_START_VIEW] = "view"};
+                                          [SC_START_VIEW] = "view",
+                                          [SC_START_SECURE] = "secure"};
 static const char *const output_names[] = {"shade", "aov", "iters", "uv", "hull"};
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
@@ -62,6 +63,8 @@ const char *scg_key_format(const scg_key *key, char *buf, size_t size)
     char degrees[32], trim[32], tol[32], outs[64] = "out";
     if (key->eval == SCG_EVAL_LOOP)
         snprintf(degrees, sizeof degrees, "dyn");
+    else if (key->kind == SCG_PATCH_TRIANGLE)   /* one total degree: tri4 */
+        snprintf(degrees, sizeof degrees, "%d", key->deg_u);
     else
         snprintf(degrees, sizeof degrees, "%dx%d", key->deg_u, key->deg_v);
     if (key->trim == SC_TRIM_NONE)
@@ -224,7 +227,13 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
         return field_error(err, text, 0, fields[0], "bez, nurbs or tri then UxV or dyn");
     k.kind = (scg_patch_kind)kind;
     bool dyn = strcmp(rest, "dyn") == 0;
-    if (!dyn) {
+    if (k.kind == SCG_PATCH_TRIANGLE && !dyn) {
+        if (!read_int(&rest, &k.deg_u) || *rest)
+            return field_error(err, text, 0, fields[0], "tri then one total degree, e.g. tri4");
+        if (k.deg_u < 1 || k.deg_u > SCG_MAX_TRI_DEGREE)
+            return field_error(err, text, 0, fields[0], "a triangle degree from 1 to 4");
+        k.deg_v = k.deg_u;
+    } else if (!dyn) {
         if (!read_int(&rest, &k.deg_u) || *rest++ != 'x' || !read_int(&rest, &k.deg_v) ||
             *rest)
             return field_error(err, text, 0, fields[0], "a kind then degrees UxV or dyn");
@@ -264,7 +273,7 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
     k.method = (sc_method)method;
     int start = match_exact(fields[5], start_names, COUNT(start_names));
     if (start < 0)
-        return field_error(err, text, 5, fields[5], "mid, cp or view");
+        return field_error(err, text, 5, fields[5], "mid, cp, view or secure");
     k.start = (sc_start)start;
     rest = fields[6];
     if (strncmp(rest, "it", 2) != 0 || (rest += 2, !read_int(&rest, &k.max_iters)) || *rest ||
@@ -321,9 +330,17 @@ int scg_key_check(const scg_key *key, sc_error *err)
     if (scg_key_parse(scg_key_format(key, text, sizeof text), &parsed, err) != SC_OK)
         return SC_FAIL;
     const char *missing = NULL;
-    if (key->kind == SCG_PATCH_TRIANGLE)
-        missing = "triangular Bézier patches (tri) are";
-    else if (key->method == SC_METHOD_BCLIP)
+    bool tri = key->kind == SCG_PATCH_TRIANGLE;
+    /* The triangular program (tri_newton.c) is one method on one form:
+     * Newton from the secure starts on the quartic along the ray. */
+    if (tri && (key->eval != SCG_EVAL_DC || key->rational || key->trim != SC_TRIM_NONE ||
+                key->method != SC_METHOD_NEWTON || key->start != SC_START_SECURE))
+        return sc_fail_key(err, text, "key %s: triangular patches (tri) are drawn with "
+                           "poly-dc-trim0-newton-secure only", text);
+    if (!tri && key->start == SC_START_SECURE)
+        return sc_fail_key(err, text, "key %s: the secure starts (secure) are for "
+                           "triangular patches (tri) only", text);
+    if (key->method == SC_METHOD_BCLIP)
         missing = "Bézier clipping (bclip) is";
     else if (key->start == SC_START_VIEW)
         missing = "view-dependent initial values (view) are";

@@ -6,8 +6,9 @@
  *   bez3x3-poly-dc-fast2i16-newton-mid-it4-tol0.25-ert0-out.shade
  *   <kind><du>x<dv>-<poly|rat>-<eval>-<trim>-<method>-<start>-it<N>-tol<T>-ert<E>-out.<o1>[.<o2>…]
  *
- * Full grammar and the meaning of every value: docs/variant-key.md. Values
- * that later work will implement (triangular patches, Broyden,
+ * Triangular patches have one total degree: tri4-poly-dc-trim0-newton-
+ * secure-…. Full grammar and the meaning of every value:
+ * docs/variant-key.md. Values that later work will implement (Broyden,
  * Bézier clipping, subdivision, hybrid, view-dependent starts) parse, so
  * that the form is stable, but scg_key_check refuses them. */
 #ifndef SCG_KEY_H
@@ -20,6 +21,7 @@
 #include "splinecast_options.h"
 
 #define SCG_MAX_DEGREE SC_MAX_DEGREE /* highest degree in either direction */
+#define SCG_MAX_TRI_DEGREE 4 /* tri keys: the secure starts need g'' quadratic */
 #define SCG_MAX_ITERS SC_MAX_ITERS
 #define SCG_MAX_TRIM_ITERS SC_MAX_TRIM_ITERS /* cap on clipping iterations per crossing */
 #define SCG_DEFAULT_TRIM_ITERS 16
@@ -28,7 +30,8 @@
 typedef enum scg_patch_kind {
     SCG_PATCH_BEZIER = 0,     /* "bez": tensor Bézier patch */
     SCG_PATCH_NURBS,          /* "nurbs": tensor NURBS, de Boor from knots */
-    SCG_PATCH_TRIANGLE        /* "tri": triangular Bézier (reserved) */
+    SCG_PATCH_TRIANGLE        /* "tri": triangular Bézier height patch, one
+                                 total degree (deg_u = deg_v = n), "tri4" */
 } scg_patch_kind;
 
 typedef enum scg_eval_form {

@@ -16,6 +16,7 @@ static scg_method_fn method_fn(const scg_key *key)
     default: return scg_method_newton;
     }
 }
+#include "tri_newton.h"
 
 int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
 {
@@ -25,7 +26,10 @@ int scg_build_unoptimized(const scg_key *key, scg_program **out, sc_error *err)
     scg_program *prog = scg_program_create(key);
     scg_builder b;
     scg_builder_init(&b, prog);
-    scg_build_intersection(&b, key, method_fn(key));
+    if (key->kind == SCG_PATCH_TRIANGLE)
+        scg_build_tri_newton(&b, key);
+    else
+        scg_build_intersection(&b, key, method_fn(key));
     if (scg_validate(prog, err) != SC_OK) {
         scg_program_free(prog);
         return SC_FAIL;

@@ -54,9 +54,13 @@ int sc_make_scene(const sc_scene_desc *desc, sc_scene_id *out, sc_error *err)
         desc = &defaults;
     if (desc->path && desc->text)
         return sc_api_invalid(err, "sc_scene_desc", PROBLEM_SCENE_SOURCE, NULL);
+    int terrain = desc->heights || desc->franke;
+    if (terrain && (desc->path || desc->text || (desc->heights && desc->franke)))
+        return sc_api_invalid(err, "sc_scene_desc", PROBLEM_TERRAIN_SOURCE, NULL);
     scene_object *s = sc_alloc(1, sizeof *s);
-    int status = desc->text ? read_scene_text(desc, &s->scene, err)
-                            : sc_read_scene(desc->path ? desc->path : "teapot", &s->scene, err);
+    int status = terrain      ? sc_api_make_terrain(desc, &s->scene, err)
+                 : desc->text ? read_scene_text(desc, &s->scene, err)
+                              : sc_read_scene(desc->path ? desc->path : "teapot", &s->scene, err);
     if (status == SC_OK && (out->id = sc_api_pool_insert(&sc_api_scenes, s, err)) != 0)
         return SC_OK;
     sc_scene_free(&s->scene);
@@ -101,6 +105,10 @@ int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err)
     info->skipped_kinds = sc->nskipped;
     info->dropped_loops = sc->dropped_loops;
     sc_scene_bounds(sc, info->lo, info->hi);
+    if (sc->terrain) {
+        info->terrain_patches = sc_terrain_patch_count(sc);
+        info->max_degree = sc_terrain_degree(sc);
+    }
     return SC_OK;
 }
 

@@ -23,6 +23,7 @@ static const char *const problem_text[] = {
     [PROBLEM_RANGE] = "is out of range",
     [PROBLEM_CAMERA] = "is not a usable view",
     [PROBLEM_CONTEXT] = "belongs to a different context",
+    [PROBLEM_TERRAIN_SOURCE] = "gives more than one of path, text, heights and franke: give one",
 };
 
 /* "WHAT PROBLEM: detail". */

@@ -40,6 +40,7 @@ typedef enum problem {
     PROBLEM_RANGE,
     PROBLEM_CAMERA,
     PROBLEM_CONTEXT,
+    PROBLEM_TERRAIN_SOURCE,
 } problem;
 
 /* "WHAT PROBLEM: detail" into err; returns SC_FAIL. */
@@ -107,6 +108,12 @@ typedef struct frame_object {
     double render_ms;
     sc_reference_stats reference;
 } frame_object;
+
+/* A terrain scene from desc->heights or desc->franke (api_terrain.c). */
+int sc_api_make_terrain(const sc_scene_desc *desc, sc_scene *out, sc_error *err);
+/* A terrain scene's patch count and degree. */
+int sc_terrain_patch_count(const sc_scene *scene);
+int sc_terrain_degree(const sc_scene *scene);
 
 /* The context whose GL calls are current, so that switching costs a call
  * only when it changes. */

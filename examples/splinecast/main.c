@@ -15,6 +15,8 @@ static const command commands[] = {
     {"audit", cmd_audit, "size, SPIR-V, register and fetch counts per shader; compare"},
     {"render", cmd_render, "ray cast a scene on the GPU: PNG + AOV, stats, accuracy"},
     {"bench", cmd_bench, "speed of the GPU path: frame time, fill rate, iterations"},
+    {"terrain", cmd_terrain, "ray cast the quartic spline of a height grid on the GPU"},
+    {"splines", cmd_splines, "the quartic spline of a height grid; Table I error"},
 };
 
 static void usage(FILE *f)

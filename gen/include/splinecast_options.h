@@ -34,15 +34,19 @@ typedef enum sc_method {
                               Newton does not converge inside it */
 } sc_method;
 
-/* Where Newton's method starts (keys: mid, cp, view). */
+/* Where Newton's method starts (keys: mid, cp, view, secure). */
 typedef enum sc_start {
     SC_START_DEFAULT = 0,  /* cpmap */
     SC_START_MID,          /* Newton starts at the middle of the sub-patch */
     SC_START_CPMAP,        /* at the control-point parameters interpolated
                               over the hull */
-    SC_START_VIEW          /* view-dependent: keys parse it, but it is not
+    SC_START_VIEW,         /* view-dependent: keys parse it, but it is not
                               implemented, so every call that builds a
                               program refuses it by name */
+    SC_START_SECURE        /* triangular patches (tri keys) only: the four
+                              secure starts of seed 004 on the univariate
+                              quartic along the projected ray (0, its
+                              inflection points, 1), iterated together */
 } sc_start;
 
 /* How trimmed surfaces are trimmed (keys: fastNiC, clipNiC, leftNiC, trim0). */
@@ -90,7 +94,18 @@ typedef enum sc_hull_split {
     SC_SPLIT_UNIFORM           /* hull_divisions × hull_divisions per patch */
 } sc_hull_split;
 
-/* The order hulls are drawn in each frame (default: hybrid). */
+/* The quartic spline a terrain's heights become (seed 004, section IV;
+ * docs/splines.md). */
+typedef enum sc_terrain_scheme {
+    SC_SCHEME_DEFAULT = 0,         /* c2 */
+    SC_SCHEME_C0,                  /* interpolates at every quartic domain point */
+    SC_SCHEME_C1,                  /* local C1 quasi-interpolant */
+    SC_SCHEME_C2,                  /* the quartic C2 box spline */
+    SC_SCHEME_LINEAR               /* piecewise linear, degree-elevated */
+} sc_terrain_scheme;
+
+/* The order hulls are drawn in each frame (default: hybrid; for terrains
+ * the Manhattan sets of seed 004, section VII, unless an order is given). */
 typedef enum sc_hull_order {
     SC_HULL_ORDER_DEFAULT = 0,
     SC_HULL_ORDER_FRONT_TO_BACK,   /* strictly by nearest hull depth */

@@ -120,6 +120,15 @@ static int build_surface(arrays *a, const sc_surface *surf, int surface_id,
         add_record(a, surface_id, world.deg_u, world.deg_v, world.nu, world.nv, world.cp, ku,
                    kv, rect);
         sc_surface_free(&world);
+    } else if (key->kind == SCG_PATCH_TRIANGLE) {
+        /* A terrain's patches (tri_prisms.h): the (n+1)(n+2)/2 points of a
+         * triangular patch in one row. */
+        for (int p = 0; p < list->count; p++) {
+            const sc_bezier_patch *bp = &list->patches[p];
+            double rect[4] = {bp->u0, bp->u1, bp->v0, bp->v1};
+            int ncoef = (bp->deg_u + 1) * (bp->deg_u + 2) / 2;
+            add_record(a, surface_id, bp->deg_u, bp->deg_v, ncoef, 1, bp->cp, 0, 0, rect);
+        }
     } else {
         for (int p = 0; p < list->count; p++) {
             const sc_bezier_patch *bp = &list->patches[p];

@@ -11,6 +11,7 @@
 #include "gpu_layout.h"
 #include "programs.h"
 #include "scene_keys.h"
+#include "tri_prisms.h"
 
 /* The key of one surface (scene_keys.h): its degrees, rationality and
  * trims, the render's start, iterations and outputs; the generic program
@@ -246,6 +247,7 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     /* Hull faces drawn where a ray misses would read as hits nearby. */
     if (r->desc.view == SC_SHOW_HULL)
         r->desc.ert = SC_TERMINATION_NONE;
+    r->manhattan = scene->terrain && !r->desc.order;
     if (!r->desc.order)
         r->desc.order = SC_RENDER_DEFAULT_ORDER;
     if (r->desc.batch_hulls <= 0)
@@ -261,6 +263,10 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
         if (sc_surface_drawable(scene, s, err) != SC_OK)
             goto fail;
         surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
+        if (scene->terrain) {   /* its stand-in surface: the terrain's key */
+            scg_key like = r->keys[s];
+            sc_tri_key(scene->terrain, &like, &r->keys[s]);
+        }
         r->kinds[s] = r->keys[s].kind;
         if (sc_program_for_key(r->programs, &r->keys[s], &r->surface_program[s], err) != SC_OK)
             goto fail;
@@ -269,10 +275,17 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     /* Each surface is cut into Bézier patches once; hull i and the record
      * it names come from the same patch. */
     r->patches = sc_alloc((size_t)(n ? n : 1), sizeof *r->patches);
-    for (int s = 0; s < n; s++)
-        sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
-    if (sc_hulls_build_from(scene, r->patches, &r->desc.hulls, &r->hulls, err) != SC_OK ||
-        sc_gpu_data_build_from(gl, scene, r->patches, r->keys, &r->data, err) != SC_OK)
+    if (scene->terrain) {
+        /* One record and one prism per triangular patch (tri_prisms.h). */
+        sc_tri_patch_list(scene->terrain, &r->patches[0]);
+        sc_tri_prisms(scene->terrain, &r->hulls);
+    } else {
+        for (int s = 0; s < n; s++)
+            sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
+        if (sc_hulls_build_from(scene, r->patches, &r->desc.hulls, &r->hulls, err) != SC_OK)
+            goto fail;
+    }
+    if (sc_gpu_data_build_from(gl, scene, r->patches, r->keys, &r->data, err) != SC_OK)
         goto fail;
     /* Weighed before anything is sent, so that a refused scene leaves no
      * buffer behind, half filled or not. */
@@ -346,6 +359,8 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
 {
     if (surface < 0 || surface >= r->scene->nsurfaces)
         return sc_fail(err, NULL, 0, "no surface %d in the scene", surface);
+    if (r->scene->terrain)
+        return sc_fail(err, NULL, 0, "a terrain has no surfaces to update; make a new scene");
     if (sc_surface_drawable(r->scene, surface, err) != SC_OK)
         return SC_FAIL;
     scg_key key;

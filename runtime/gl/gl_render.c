@@ -15,6 +15,7 @@
 
 #include "programs.h"
 #include "shader_contract.h"
+#include "tri_prisms.h"
 
 /* The attachments the programs write: the contract's fragment outputs
  * that the view's keys declare, at their locations. */
@@ -88,7 +89,8 @@ static void order_hulls(sc_renderer *r, int n)
 {
     sort_item *items = r->items;
     qsort(items, (size_t)n, sizeof *items, by_order);
-    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK)
+    /* Manhattan sets (major: the set) are in order already: one program. */
+    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK || r->manhattan)
         return;
     /* By program: the programs in the order of their nearest hull, front to
      * back within one. Hybrid: the same within each bucket of batch_hulls
@@ -336,6 +338,13 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
         else
             r->items[n++] = (sort_item){.distance = d, .hull = k};
     }
+    /* A terrain's prisms in sets of one Manhattan distance from the
+     * square under the eye (seed 004, section VII): a set's prisms do not
+     * overlap on screen, and each set is one batch that sees the hits of
+     * the sets in front of it. */
+    for (int i = 0; r->manhattan && i < n; i++)
+        r->items[i].major =
+            sc_tri_manhattan(r->scene->terrain, h->subpatches[r->items[i].hull].patch, cam->eye);
     order_hulls(r, n);
     for (int i = 0; i < ninside; i++)
         if (r->desc.ert != SC_TERMINATION_NONE &&
@@ -393,11 +402,12 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
      * every hit of the batches before it and none of its own, and whole
      * hulls behind those hits are culled. A read-back that culled nothing
      * doubles the next batch: it costs a copy, which only culling repays. */
-    int batch = manual ? r->desc.batch_hulls : n + 1;
+    int batch = manual && !r->manhattan ? r->desc.batch_hulls : n + 1;
     for (int p = 0; p < n;) {
         int first = nidx, drawn = 0, culled = 0;
+        double set = r->items[p].major;
         nruns = 0;
-        for (; p < n && drawn < batch; p++) {
+        for (; p < n && drawn < batch && !(r->manhattan && r->items[p].major != set); p++) {
             int k = r->items[p].hull;
             if (r->readbacks && hull_hidden(r, vp, fwd, k)) {
                 culled++;
@@ -409,8 +419,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
         r->culled += culled;
         if (r->readbacks && !culled && batch < n)
             batch *= 2;
-        if (!drawn)
-            break;
+        if (!drawn)   /* all culled: a Manhattan set may end before the order does */
+            continue;
         submit_runs(r, nruns, first, nidx, &current);
         if (manual && p < n)
             refresh_nearest(r);

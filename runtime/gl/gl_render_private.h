@@ -117,6 +117,8 @@ struct sc_renderer {
     sc_camera camera;        /* of the last frame */
     int draw_calls, program_switches, culled, readbacks;  /* of the last frame */
     double compile_ms;
+    int manhattan;           /* a terrain drawn in Manhattan sets: its order
+                                was left to the default */
     /* per frame scratch */
     uint32_t *frame_indices;
     double *distance;

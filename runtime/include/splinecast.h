@@ -60,6 +60,17 @@ typedef struct sc_scene_desc {
     size_t size;           /* bytes of text */
     const char *name;      /* with text: names it in messages; its extension
                               picks the reader */
+    /* A terrain instead of a scene file (docs/splines.md): triangular
+     * quartic patches from a grid of heights, drawn with a `tri` key. */
+    const char *heights;   /* a PGM (P2/P5, 8/16-bit) or CSV grid of heights;
+                              refused with file:line when malformed */
+    int franke;            /* instead of heights: Franke's function at N data
+                              points on [0,1]² (144, 576, 2304, …) */
+    sc_terrain_scheme scheme;  /* the spline (c2) */
+    double spacing;        /* heights: distance between samples (the grid
+                              spans 1 along its longer side) */
+    double height_scale;   /* heights: factor on the heights (a PGM's gray
+                              levels are divided by maxval first) (1) */
 } sc_scene_desc;
 
 int sc_make_scene(const sc_scene_desc *desc, sc_scene_id *out, sc_error *err);
@@ -75,6 +86,8 @@ typedef struct sc_scene_info {
     int skipped_kinds;       /* kinds of them: sc_query_scene_skipped's range */
     int dropped_loops;       /* trim loops removed by validation */
     double lo[3], hi[3];     /* world-space bounding box of the control points */
+    int terrain_patches;     /* a terrain's triangular patches (0 otherwise);
+                                its one surface stands for it */
 } sc_scene_info;
 
 int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);
@@ -94,6 +107,29 @@ int sc_query_scene_skipped(sc_scene_id scene, int index, sc_skipped_info *info,
  * .obj; trim loops as curv2, transforms baked in) and a .mtl of its colours
  * beside it (the same name ending in .mtl). Never half-written. */
 int sc_save_obj(sc_scene_id scene, const char *path, sc_error *err);
+
+/* "c0", "c1", "c2", "linear" (SC_SCHEME_DEFAULT is c2). */
+const char *sc_terrain_scheme_name(sc_terrain_scheme scheme);
+int sc_parse_terrain_scheme(const char *name, sc_terrain_scheme *out, sc_error *err);
+
+/* The paper's Table I protocol (docs/splines.md): Franke's function
+ * sampled at `points` data sites, the scheme's spline built from them,
+ * and the error measured at `sites` uniformly distributed points,
+ * relative to the largest |f| among the data. Zero means default. */
+typedef struct sc_spline_error_desc {
+    sc_terrain_scheme scheme;  /* c2 */
+    int points;                /* N, required: 144, 576, 2304, … */
+    int sites;                 /* 1000000 */
+} sc_spline_error_desc;
+
+typedef struct sc_spline_error_info {
+    int points, patches;
+    double rel_rms, rel_max;
+    char line[160];            /* "splines scheme=S points=N patches=P rel_rms=X rel_max=Y" */
+} sc_spline_error_info;
+
+int sc_measure_spline_error(const sc_spline_error_desc *desc, sc_spline_error_info *out,
+                            sc_error *err);
 
 /* ---- surfaces --------------------------------------------------------- */
 

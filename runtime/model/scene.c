@@ -88,6 +88,8 @@ void sc_scene_free(sc_scene *scene)
         sc_surface_free(&scene->surfaces[i]);
     free(scene->surfaces);
     free(scene->skipped);
+    if (scene->terrain && scene->terrain_free)
+        scene->terrain_free(scene->terrain);
     sc_scene_init(scene);
 }
 

@@ -64,6 +64,13 @@ typedef struct sc_scene {
     int dropped_loops;    /* loops removed by validation */
     int repaired_gaps;    /* gaps closed with a straight segment */
     char source[256];     /* file name the scene came from (for messages) */
+    /* A terrain (runtime/terrain/tri_bezier.h): triangular Bézier height
+     * patches, drawn with a `tri` key and traced by the terrain reference
+     * instead of the surfaces' geometry. Surface 0 then only stands for it
+     * (its bounding box, colour and name). Owned: sc_scene_free calls
+     * terrain_free on it. NULL for scenes of surfaces. */
+    struct sc_tri_mesh *terrain;
+    void (*terrain_free)(struct sc_tri_mesh *terrain);
 } sc_scene;
 
 /* ---- lifetime ---- */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "scene_keys.h"
+#include "tri_prisms.h"
 #include "trim.h"
 #include "trim_pack.h"
 
@@ -99,6 +100,10 @@ int sc_scene_keys(const sc_scene *scene, const sc_key_options *opts,
         }
         scg_key key;
         sc_surface_key(&scene->surfaces[i], opts, &key);
+        if (scene->terrain) {   /* its stand-in surface: the terrain's key */
+            scg_key like = key;
+            sc_tri_key(scene->terrain, &like, &key);
+        }
         scg_key_format(&key, all[drawable++], SCG_KEY_MAX);
     }
     qsort(all, (size_t)drawable, SCG_KEY_MAX, compare_keys);

@@ -22,6 +22,7 @@
  * search continue to the next candidate. */
 #define _POSIX_C_SOURCE 200809L
 #include "refcast.h"
+#include "tri_trace.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -86,6 +87,8 @@ struct sc_refcast {
     bvh_node *nodes;
     sc_trim **trims;          /* per surface, NULL when untrimmed */
     int max_points;           /* largest (deg_u+1)(deg_v+1) */
+    sc_tri_tracer *terrain;   /* a terrain scene's patches (tri_trace.h)
+                                 instead of the surfaces' */
 };
 
 /* ---------------------------------------------------------------- BVH -- */
@@ -167,6 +170,9 @@ void sc_refcast_free(sc_refcast *rc)
         for (int s = 0; s < rc->scene->nsurfaces; s++)
             sc_trim_free(rc->trims[s]);
     free(rc->trims);
+    if (rc->terrain)
+        sc_tri_tracer_free(rc->terrain);
+    free(rc->terrain);
     free(rc);
 }
 
@@ -176,6 +182,13 @@ int sc_refcast_prepare(const sc_scene *scene, sc_refcast **out, sc_error *err)
     sc_refcast *rc = sc_alloc(1, sizeof *rc);
     rc->scene = scene;
     rc->trims = sc_alloc((size_t)scene->nsurfaces + 1, sizeof(sc_trim *));
+    if (scene->terrain) {
+        /* Surface 0 only stands for the terrain (terrain_scene.h). */
+        rc->terrain = sc_alloc(1, sizeof *rc->terrain);
+        sc_tri_tracer_init(rc->terrain, scene->terrain);
+        *out = rc;
+        return SC_OK;
+    }
     int cap = 0;
     double scene_lo[3] = {INFINITY, INFINITY, INFINITY}, scene_hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     /* Messages name the scene's file when it came from one. */
@@ -533,9 +546,36 @@ static void intersect_patch(const sc_refcast *rc, const ref_patch *p, const ray_
 
 /* ------------------------------------------------------------- rays -- */
 
+/* A terrain's nearest hit: exact in double precision (tri_trace.c); its
+ * (u, v) is the domain point, its surface 0. */
+static void trace_terrain(const sc_refcast *rc, const double origin[3], const double dir[3],
+                          sc_ref_hit *hit)
+{
+    memset(hit, 0, sizeof *hit);
+    hit->surface = -1;
+    double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    double unit[3] = {dir[0] / len, dir[1] / len, dir[2] / len};
+    sc_tri_hit h;
+    if (sc_tri_tracer_trace(rc->terrain, origin, unit, 0.0, &h) != SC_OK)
+        return;
+    hit->surface = 0;
+    hit->u = h.point[0];
+    hit->v = h.point[1];
+    hit->t = h.t;
+    double facing = h.normal[0] * unit[0] + h.normal[1] * unit[1] + h.normal[2] * unit[2];
+    for (int k = 0; k < 3; k++) {
+        hit->point[k] = h.point[k];
+        hit->normal[k] = facing > 0 ? -h.normal[k] : h.normal[k];
+    }
+}
+
 static void trace(const sc_refcast *rc, const double origin[3], const double dir[3], ray_work *w,
                   sc_ref_hit *hit)
 {
+    if (rc->terrain) {
+        trace_terrain(rc, origin, dir, hit);
+        return;
+    }
     ray_frame f;
     make_frame(origin, dir, &f);
     ray_best best = {.t = INFINITY, .surface = -1};

@@ -40,20 +40,28 @@ static double franke_cb(double x, double y, void *user)
     return sc_franke(x, y);
 }
 
-int sc_spline_franke_error(sc_spline_scheme s, int points, int sites, sc_spline_error *out,
-                           sc_error *err)
+int sc_spline_franke_heights(sc_spline_scheme s, int points, sc_heights *out, sc_error *err)
 {
-    if ((unsigned)s >= SC_SPLINE_SCHEME_COUNT)
-        return sc_fail(err, NULL, 0, "unknown spline scheme %d", (int)s);
     int k = sc_spline_samples_per_square(s);
     int n = (int)lround(sqrt((double)points));
     if (points < 1 || n * n != points || n % k != 0 || n > 4096)
         return sc_fail(err, NULL, 0, "%d data points: scheme %s needs N = n^2 with n a multiple "
                        "of %d, at most 4096 (144, 576, 2304, ...)", points,
                        sc_spline_scheme_name(s), k);
+    sc_heights_franke(n, sc_spline_pad(s), out);
+    return SC_OK;
+}
+
+int sc_spline_franke_error(sc_spline_scheme s, int points, int sites, sc_spline_error *out,
+                           sc_error *err)
+{
+    if ((unsigned)s >= SC_SPLINE_SCHEME_COUNT)
+        return sc_fail(err, NULL, 0, "unknown spline scheme %d", (int)s);
     if (sites < 1) return sc_fail(err, NULL, 0, "%d error sites: need at least one", sites);
     sc_heights h;
-    sc_heights_franke(n, sc_spline_pad(s), &h);
+    if (sc_spline_franke_heights(s, points, &h, err) != SC_OK)
+        return SC_FAIL;
+    int n = h.nx - 1;
     double amp = 0;
     for (int j = 0; j <= n; j++)
         for (int i = 0; i <= n; i++) amp = fmax(amp, fabs(sc_heights_at(&h, i, j)));

@@ -46,6 +46,11 @@ const double *sc_box_spline_net(int upper, int di, int dj);
  * |x|, |y|, |x - y| < 2). */
 double sc_box_spline_value(double x, double y);
 
+/* Franke's function at `points` = (k m)^2 data sites on [0,1]^2 (k from
+ * sc_spline_samples_per_square), with the scheme's pad: the heights Table I
+ * builds its splines from. Fails naming the counts that work. */
+int sc_spline_franke_heights(sc_spline_scheme s, int points, sc_heights *out, sc_error *err);
+
 /* The paper's Table I protocol for one scheme: Franke's function sampled at
  * `points` = (k m)^2 data sites on [0,1]^2 (144, 576, 2304, ...; k from
  * sc_spline_samples_per_square), the spline built, and the error measured
