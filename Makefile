@@ -74,9 +74,9 @@ LIB_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(RUNTIME_SRC) $(GEN_SRC)) \
            $(BUILD)/embedded_templates.o $(BUILD)/embedded_scenes.o
 CLI_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 # The tests also check the command line's spellings of the options and
-# its file names.
+# its file names, and run the stability suite as `bench --stability` does.
 TEST_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC)) $(BUILD)/examples/splinecast/options.o \
-           $(BUILD)/examples/splinecast/cli.o
+           $(BUILD)/examples/splinecast/cli.o $(BUILD)/examples/splinecast/stability.o
 
 LIB  = $(BUILD)/libsplinecast.a
 CLI  = $(BUILD)/splinecast

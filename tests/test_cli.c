@@ -141,3 +141,32 @@ TEST(cli_render_method_option)
     CHECK_CONTAINS(out, "fail_pct=0 ");
     free(out);
 }
+
+/* render prints one `program KEY` line per program, after its other lines:
+ * mixed_keys.obj draws with the keys `info` lists (in another order). */
+TEST(cli_render_program_lines)
+{
+    char cmd[2048], *out = NULL, *info = NULL;
+    snprintf(cmd, sizeof cmd,
+             "%s render %s/examples/scenes/mixed_keys.obj -o %s/k.png --size 16x16", test_cli,
+             test_root_dir, test_tmpdir());
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    snprintf(cmd, sizeof cmd, "%s info %s/examples/scenes/mixed_keys.obj", test_cli, test_root_dir);
+    CHECK_INT(test_run(cmd, &info, NULL), 0);
+    int programs = 0, keys = 0, after_stats = strncmp(out, "stats ", 6) == 0;
+    for (char *line = strstr(out, "\nprogram "); line; line = strstr(line + 1, "\nprogram ")) {
+        char key[160];
+        CHECK(sscanf(line + 9, "%159s", key) == 1);
+        char wanted[200];
+        snprintf(wanted, sizeof wanted, "key %s\n", key);
+        CHECK_CONTAINS(info, wanted);
+        programs++;
+    }
+    for (char *line = strstr(info, "\nkey "); line; line = strstr(line + 1, "\nkey "))
+        keys++;
+    free(out);
+    free(info);
+    CHECK(after_stats);
+    CHECK_INT(programs, keys);
+    CHECK(programs >= 6);
+}

@@ -8,7 +8,7 @@
  * generic, with compile times: the figures that set the unrolling limit
  * (programs.h) and the draw time by degree. With --ert, --order or --batch:
  * the early-termination and draw-order sweep of bench_order.c over one or
- * more scenes. */
+ * more scenes. With --stability: the stability suite (bench_stability.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,7 +58,10 @@ static const char usage[] =
     "  --degrees LO-HI        instead of a scene: one bumpy Bezier patch of each\n"
     "                         degree LO..HI filling the view, unrolled vs generic\n"
     "  --trim-table           instead of a scene: the cost of trimming, trimmed /\n"
-    "                         untrimmed per method (bench --trim-table --help)\n";
+    "                         untrimmed per method (bench --trim-table --help)\n"
+    "  --stability            instead of a scene: the stability suite, every\n"
+    "                         method and start against the CPU reference\n"
+    "                         (bench --stability --help)\n";
 
 /* A bumpy Bézier patch of degree d × d over [-1, 1]², heights from a fixed
  * pseudo-random sequence, so that Newton has work at every degree: a .bpt
@@ -131,9 +134,12 @@ static int bench_degrees(sc_context_id ctx, sc_renderer_desc desc, int lo, int h
 
 int cmd_bench(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
+    for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--trim-table"))
             return bench_trim_table(argc, argv);
+        if (!strcmp(argv[i], "--stability"))
+            return bench_stability(argc, argv);
+    }
     if (cli_wants_help(argc, argv)) {
         fputs(usage, stdout);
         return 0;

@@ -53,7 +53,8 @@ static const char usage[] =
     "        (frame_ms: median of the timed frames; compile_ms: generating,\n"
     "        validating, compiling and linking the programs, plus the warm-up\n"
     "        frame's excess over the median, where llvmpipe finishes compiling)\n"
-    "        and with --ref: accuracy coverage_pct=... fail_pct=... (see diff)\n";
+    "        and with --ref: accuracy coverage_pct=... fail_pct=... (see diff)\n"
+    "        then program KEY for each program compiled, in order of first use\n";
 
 static int parse_size(const char *text, int *w, int *h)
 {
@@ -232,6 +233,25 @@ int cmd_render(int argc, char **argv)
             goto done;
         }
         printf("%s\n", acc.line);
+    }
+    /* The programs last, so that the lines above keep their places. The
+     * context is fresh, so every key the renderer draws with was compiled
+     * for it. */
+    {
+        int nkeys = 0;
+        if (sc_query_renderer_keys(renderer, NULL, 0, &nkeys, &err) != SC_OK) {
+            cli_report(&err);
+            goto done;
+        }
+        sc_key *keys = calloc((size_t)(nkeys ? nkeys : 1), sizeof *keys);
+        if (!keys || sc_query_renderer_keys(renderer, keys, nkeys, &nkeys, &err) != SC_OK) {
+            free(keys);
+            cli_report(&err);
+            goto done;
+        }
+        for (int k = 0; k < nkeys; k++)
+            printf("program %s\n", keys[k].text);
+        free(keys);
     }
     status = 0;
 done:

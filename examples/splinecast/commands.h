@@ -28,6 +28,8 @@ int cmd_terrain(int argc, char **argv);
 int cmd_splines(int argc, char **argv);
 /* `bench --trim-table` (bench_trim.c). */
 int bench_trim_table(int argc, char **argv);
+/* `bench --stability` (bench_stability.c). */
+int bench_stability(int argc, char **argv);
 
 /* Shared helpers (cli.c). */
 /* True when argv has -h or --help. */

@@ -186,3 +186,8 @@ int cli_start_parse(const char *text, sc_start *out, sc_error *err)
     *out = (sc_start)starts[i].value;
     return SC_OK;
 }
+
+const char *cli_start_name(sc_start start)
+{
+    return name_of(starts, COUNT(starts), start, "default");
+}

@@ -27,8 +27,10 @@ const char *cli_order_name(sc_hull_order order);
  * name. */
 int cli_method_parse(const char *text, sc_method *out, sc_error *err);
 const char *cli_method_name(sc_method method);
-/* mid, cpmap, view. */
+/* mid, cpmap, view; and back ("default" for SC_START_DEFAULT and values
+ * without a spelling). */
 int cli_start_parse(const char *text, sc_start *out, sc_error *err);
+const char *cli_start_name(sc_start start);
 /* egl, osmesa, default; and back. */
 int cli_backend_parse(const char *text, sc_backend *out, sc_error *err);
 const char *cli_backend_name(sc_backend backend);
