@@ -13,7 +13,7 @@
  * leniently. Entity data is read strictly: a count larger than the data, a
  * pointer outside the directory or a reference cycle fails the file with a
  * message naming the entity, because reading on would mean interpreting
- * someone else's numbers. Every allocation is bounded by the data present.
+ * someone else's numbers. Allocations are bounded by the data and by envelope.h.
  * Entities are parsed on demand from the surfaces down. */
 #include "envelope.h"
 #include "io.h"
@@ -76,8 +76,7 @@ typedef struct params {
 } params;
 
 /* A parameter record tokenised once, by its first P line, however many
- * entities point at it and however often an entity is visited: `status`
- * is TOK_END or what stopped tokenize, `at` and `n` where. */
+ * entities point at it: `status` is what stopped tokenize, `at` and `n` where. */
 typedef struct parsed_record {
     int done, status, at, n;
     params p;
@@ -409,12 +408,10 @@ static int get_count(reader *r, const params *p, int i, int per, int *out)
     return SC_OK;
 }
 
-/* Tokenises the parameter record starting at P line `pdata` into the
- * cache. The directory's line count is a hint: records are added until the
- * record delimiter appears, doubling so that a wrong count stays cheap.
- * Records that start at different lines of one long record (pointers into
- * the middle of another entity's data) would each tokenise it again, so the
- * characters tokenised per file are bounded by a multiple of the P section. */
+/* Tokenises the record at P line `pdata` into the cache. The directory's
+ * line count is a hint: lines are added until the record delimiter, doubling
+ * so that a wrong count stays cheap. Pointers into the middle of a long
+ * record would each tokenise the rest: the total is bounded. */
 static int tokenise_record(reader *r, int e, int pdata, parsed_record *pr)
 {
     int np = r->sec_count[SEC_P];
@@ -441,8 +438,10 @@ static int tokenise_record(reader *r, int e, int pdata, parsed_record *pr)
     return SC_OK;
 }
 
-static int load_params_into(reader *r, int e, params *p)
+/* The entity's parameters: a view of the cache, never to be freed. */
+static int load_params(reader *r, int e, params *p)
 {
+    memset(p, 0, sizeof *p);
     p->entity = e;
     const entity *en = &r->ent[e];
     int np = r->sec_count[SEC_P];
@@ -473,16 +472,6 @@ static int load_params_into(reader *r, int e, params *p)
                            "start with its type %d: wrong parameter data pointer?", en->pdata,
                            en->type);
     return SC_OK;
-}
-
-/* The entity's parameters; on failure nothing stays allocated. */
-static int load_params(reader *r, int e, params *p)
-{
-    memset(p, 0, sizeof *p);
-    if (load_params_into(r, e, p) == SC_OK)
-        return SC_OK;
-    params_free(p);
-    return SC_FAIL;
 }
 
 /* ------------------------------------------------------------------ */
@@ -629,7 +618,6 @@ static int matrix_of_124(reader *r, int t, double m[12])
             status = need_params(r, &p, 12);
         for (int i = 0; i < 12 && status == SC_OK; i++)
             status = get_real(r, &p, i + 1, &en->matrix[i]);
-        params_free(&p);
         if (status)
             return SC_FAIL;
         en->has_matrix = 1;
@@ -693,7 +681,6 @@ static int entity_color(reader *r, int e, float rgb[3])
         status = need_params(r, &p, 3);
     for (int i = 0; i < 3 && status == SC_OK; i++)
         status = get_real(r, &p, i + 1, &v[i]);
-    params_free(&p);
     if (status)
         return SC_FAIL;
     for (int i = 0; i < 3; i++)
@@ -824,7 +811,6 @@ static int read_128(reader *r, int e, sc_surface *s)
     int status = load_params(r, e, &p);
     if (status == SC_OK)
         status = read_128_into(r, &p, s);
-    params_free(&p);
     if (status)
         sc_surface_free(s);
     return status;
@@ -1012,24 +998,18 @@ static int count_pieces(reader *r, int e, int depth)
         return en->pieces;
     if (en->type != 102 || en->counting || depth > MAX_NESTING)
         return 1;
-    params p;
-    int count = 0;
+    params p; /* the cache's: nothing to free */
+    int count = 0, member;
+    long long total = 0;
     sc_error *err = r->err;
     r->err = NULL;
-    if (load_params(r, e, &p) || need_params(r, &p, 1) || get_count(r, &p, 1, 1, &count)) {
-        params_free(&p);
-        r->err = err;
-        return 1;
+    if (!load_params(r, e, &p) && !need_params(r, &p, 1) && !get_count(r, &p, 1, 1, &count)) {
+        en->counting = 1;
+        for (int i = 0; i < count && total <= SC_MAX_LOOP_PIECES; i++)
+            if (get_pointer(r, &p, 2 + i, &member) == SC_OK && member >= 0)
+                total += count_pieces(r, member, depth + 1);
+        en->counting = 0;
     }
-    en->counting = 1;
-    long long total = 0;
-    for (int i = 0; i < count && total <= SC_MAX_LOOP_PIECES; i++) {
-        int member;
-        if (get_pointer(r, &p, 2 + i, &member) == SC_OK && member >= 0)
-            total += count_pieces(r, member, depth + 1);
-    }
-    en->counting = 0;
-    params_free(&p);
     r->err = err;
     en->pieces = total > SC_MAX_LOOP_PIECES ? SC_MAX_LOOP_PIECES + 1 : total < 1 ? 1 : (int)total;
     return en->pieces;
@@ -1078,11 +1058,9 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
     case 126: status = read_126(r, &p, m, out); break;
     case 102: {
         int count = 0;
-        /* Members may repeat (the same composite listed twice, nested):
-         * the expansion is counted before it is built. */
+        /* Members may repeat: the expansion is counted before it is built. */
         if (count_pieces(r, e, depth) > SC_MAX_LOOP_PIECES - out->n) {
             en->busy = 0;
-            params_free(&p);
             return fail_entity(r, e, 0, "composite curve expands to more than %d curves in one "
                                "trim loop (members listed repeatedly; docs/limits.md)",
                                SC_MAX_LOOP_PIECES);
@@ -1103,7 +1081,6 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
     }
     }
     en->busy = 0;
-    params_free(&p);
     if (status == SC_OK && en->type != 102)
         status = charge_curves(r, e, out, first);
     if (status == SC_OK && reversed)
@@ -1162,7 +1139,6 @@ static int loop_of_142(reader *r, int e, curve_list *out)
         status = get_pointer(r, &p, 2, &sptr);
     if (status == SC_OK)
         status = get_pointer(r, &p, 3, &bptr);
-    params_free(&p);
     if (status)
         return SC_FAIL;
     if (bptr < 0)
@@ -1250,7 +1226,6 @@ static int loop_of(reader *r, int e, curve_list *out)
         return SC_FAIL;
     int status = r->ent[e].type == 141 ? loop_of_141_params(r, &p, out)
                                        : loop_of_508_params(r, &p, out);
-    params_free(&p);
     return status;
 }
 
@@ -1648,7 +1623,6 @@ static void mark_references(reader *r)
             status = need_params(r, &p, i);
         if (status == SC_OK)
             status = get_pointer(r, &p, i, &target);
-        params_free(&p);
         if (status == SC_OK && target >= 0)
             r->ent[target].referenced = 1;
     }
@@ -1675,7 +1649,6 @@ static int convert_all(reader *r)
             if (status == SC_OK)
                 status = type == 144 ? convert_144(r, &p)
                          : type == 143 ? convert_143(r, &p) : convert_510(r, &p);
-            params_free(&p);
         } else if (type == 128 && !r->ent[e].referenced) {
             sc_surface s;
             status = read_128(r, e, &s);
