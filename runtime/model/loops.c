@@ -38,8 +38,9 @@ static const double FLAT_TOL = 1e-6;
 /* Subdivision depth per Bézier segment, and vertices per loop, beyond
  * which a curve is flattened no further. */
 enum { FLAT_MAX_DEPTH = 14, FLAT_MAX_POINTS = 1 << 22, GRID_MAX_SIDE = 2048 };
-/* Segment pairs tested per loop: PAIR_BUDGET per segment, and at least
- * PAIR_FLOOR (any loop of up to about 2,900 segments is checked whole). */
+/* Grid entries and segment pairs tested per loop: PAIR_BUDGET per segment,
+ * and at least PAIR_FLOOR (any loop of up to about 2,900 segments is
+ * checked whole). */
 enum { PAIR_BUDGET = 16, PAIR_FLOOR = 1 << 22, CROSSING_UNKNOWN = -1 };
 
 /* ---- curve ends ---- */
@@ -313,11 +314,13 @@ static int cell_of(double x, double origin, double size, int n)
     return i < 0 ? 0 : i >= n ? n - 1 : i;
 }
 
-/* Calls back for every cell the segment passes through (conservatively:
- * column by column, the y range of the segment within the column). */
-static void cover_cells(const grid *g, const double *a, const double *b, int seg, int *count,
-                        int *fill)
+/* Counts or fills every cell the segment passes through (conservatively:
+ * column by column, the y range of the segment within the column), and
+ * returns how many. */
+static int cover_cells(const grid *g, const double *a, const double *b, int seg, int *count,
+                       int *fill)
 {
+    int cells = 0;
     double xmin = fmin(a[0], b[0]), xmax = fmax(a[0], b[0]);
     int ix0 = cell_of(xmin, g->x0, g->cell_w, g->nx);
     int ix1 = cell_of(xmax, g->x0, g->cell_w, g->nx);
@@ -342,8 +345,10 @@ static void cover_cells(const grid *g, const double *a, const double *b, int seg
                 g->entries[fill[cell]++] = seg;
             else
                 count[cell]++;
+            cells++;
         }
     }
+    return cells;
 }
 
 /* Finds a crossing between two segments of the closed polyline that are
@@ -376,8 +381,18 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
     int ncells = g.nx * g.ny;
     g.start = sc_alloc((size_t)ncells + 1, sizeof(int));
     int *count = sc_alloc((size_t)ncells, sizeof(int));
-    for (int i = 0; i < n; i++)
-        cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, count, NULL);
+    /* Long overlapping segments cover many cells each: the entries share
+     * the budget of the pair tests. */
+    long long budget = (long long)PAIR_BUDGET * n > PAIR_FLOOR ? (long long)PAIR_BUDGET * n
+                                                                : PAIR_FLOOR;
+    for (int i = 0; i < n; i++) {
+        budget -= cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, count, NULL);
+        if (budget < 0) {
+            free(count);
+            free(g.start);
+            return CROSSING_UNKNOWN;
+        }
+    }
     for (int c = 0; c < ncells; c++)
         g.start[c + 1] = g.start[c] + count[c];
     g.entries = sc_alloc((size_t)g.start[ncells], sizeof(int));
@@ -385,8 +400,6 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
     for (int i = 0; i < n; i++)
         cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, NULL, count);
     int found = 0;
-    long long budget = (long long)PAIR_BUDGET * n > PAIR_FLOOR ? (long long)PAIR_BUDGET * n
-                                                                : PAIR_FLOOR;
     for (int c = 0; c < ncells && !found; c++)
         for (int x = g.start[c]; x < g.start[c + 1] && !found; x++) {
             budget -= g.start[c + 1] - x - 1;
