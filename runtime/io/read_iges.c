@@ -409,9 +409,10 @@ static int get_count(reader *r, const params *p, int i, int per, int *out)
 }
 
 /* Tokenises the record at P line `pdata` into the cache. The directory's
- * line count is a hint: lines are added until the record delimiter, doubling
- * so that a wrong count stays cheap. Pointers into the middle of a long
- * record would each tokenise the rest: the total is bounded. */
+ * line count is a hint (up to 64 lines are trusted): lines are added until
+ * the record delimiter, doubling so that a wrong count stays cheap. Pointers
+ * into the middle of a long record would each tokenise the rest: the lines
+ * tokenised per file are bounded. */
 static int tokenise_record(reader *r, int e, int pdata, parsed_record *pr)
 {
     int np = r->sec_count[SEC_P];
@@ -419,16 +420,17 @@ static int tokenise_record(reader *r, int e, int pdata, parsed_record *pr)
     p->first_record = r->sec_first[SEC_P] + pdata - 1;
     int avail = np - (pdata - 1), nlines = r->ent[e].nlines;
     int want = nlines < 1 ? 1 : nlines < avail ? nlines : avail;
-    size_t allowed = (size_t)8 * np * PARAM_COLS + ((size_t)1 << 20);
+    want = want < 64 ? want : 64;
     for (;;) {
-        r->tokenised += (size_t)want * PARAM_COLS;
-        if (r->tokenised > allowed)
-            return fail_entity(r, e, r->rec[p->first_record].line, "parameter data pointers "
-                               "into the middle of other entities' data: tokenising them takes "
-                               "more than 8 times the parameter section");
         p->text = sc_realloc(p->text, (size_t)want * PARAM_COLS, 1);
         pr->n = gather(r, p->first_record, want, PARAM_COLS, p->text);
         pr->status = tokenize(p->text, pr->n, r->pdelim, r->rdelim, p, &pr->at);
+        const token *last = pr->status == TOK_END ? &p->tok[p->ntok - 1] : NULL;
+        r->tokenised += last ? (size_t)(last->start + last->len) : (size_t)pr->n;
+        if (r->tokenised > (size_t)4 * np * PARAM_COLS + ((size_t)1 << 20))
+            return fail_entity(r, e, r->rec[p->first_record].line, "parameter data pointers "
+                               "into the middle of other entities' data: tokenising them takes "
+                               "more than 4 times the parameter section");
         if (pr->status != TOK_CUT || want == avail)
             break;
         want = want > avail / 2 ? avail : 2 * want;
