@@ -420,6 +420,27 @@ TEST(limits_hostile_iges_overlapping_records)
     CHECK(took < 2);
 }
 
+/* A wrong line count in the directory stays a hint: every entity claiming
+ * 9999 lines still reads, and costs no more than a right one. */
+TEST(limits_iges_wrong_line_counts)
+{
+    enum { N = 500 };
+    spec *e = calloc(N, sizeof *e);
+    for (int k = 0; k < N; k++)
+        e[k] = (spec){128, iges_plane_params(1 + k), 0, 0, NULL};
+    char *file = iges_make_iges(e, N);
+    for (int k = 0; k < N; k++) /* field 4 of the second directory record */
+        memcpy(file + (size_t)(3 + 2 * k) * 81 + 24, "    9999", 8);
+    sc_scene scene;
+    sc_error err;
+    int status = iges_read_text(file, &scene, &err);
+    free(file);
+    free(e);
+    CHECK_INT(status, SC_OK);
+    CHECK_INT(scene.nsurfaces, N);
+    sc_scene_free(&scene);
+}
+
 /* ---- files ---- */
 
 /* A sparse file of `size` bytes in the test folder. */
