@@ -284,6 +284,39 @@ TEST(limits_hostile_iges_composite_exponential)
     CHECK(took < 1);
 }
 
+/* One 142 listed 20,000 times by a 144, its curve a composite of 60,000
+ * lines: each listing is built again, until the budget stops it. */
+TEST(limits_hostile_iges_loop_listed_repeatedly)
+{
+    text c = {0}, s = {0};
+    put(&c, "102,60000");
+    for (int i = 0; i < 60000; i++)
+        put(&c, ",3");
+    put(&c, ";");
+    put(&s, "144,1,1,20000,7");
+    for (int i = 0; i < 20000; i++)
+        put(&s, ",7");
+    put(&s, ";");
+    spec e[] = {{128, iges_plane_params(1), 0, 0, NULL},
+                {110, "110,0.1,0.1,0.,0.9,0.9,0.;", 0, 0, NULL},
+                {102, c.s, 0, 0, NULL},
+                {142, "142,0,1,5,0,2;", 0, 0, NULL},
+                {144, s.s, 0, 0, NULL}};
+    char *file = iges_make_iges(e, 5);
+    sc_scene scene;
+    sc_error err;
+    double t0 = sc_now();
+    int status = iges_read_text(file, &scene, &err);
+    double took = sc_now() - t0;
+    free(file);
+    free(c.s);
+    free(s.s);
+    CHECK_INT(status, SC_FAIL);
+    CHECK_CONTAINS(iges_error_text(&err), "t.igs:5: entity 110 (D 3) in a trim loop: the file "
+                                          "expands to more than 256 MiB");
+    CHECK(took < 20); /* about 1 s; more under AddressSanitizer */
+}
+
 /* ---- loop validation ---- */
 
 /* Issue 18: one trim curve repeated thousands of times used to take

@@ -975,17 +975,18 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     return SC_OK;
 }
 
-/* Charges the curves [first, n) of the list, just read from entity e, to
- * the file's budget, and fails when the loop has too many. */
+/* Charges the curves [first, n) just read from entity e to the budget. */
 static int charge_curves(reader *r, int e, const curve_list *l, int first)
 {
     if (l->n > SC_MAX_LOOP_PIECES)
         return fail_entity(r, e, 0, "a trim loop of more than %d curves (docs/limits.md)",
                            SC_MAX_LOOP_PIECES);
     size_t bytes = 0;
+    char what[64];
     for (int i = first; i < l->n; i++)
         bytes += sc_curve_bytes(2, l->items[i].degree, l->items[i].ncp);
-    return sc_budget_charge(&r->budget, bytes, "trim curve", r->name, r->ent[e].line, r->err);
+    snprintf(what, sizeof what, "entity %d (D %d) in a trim loop", r->ent[e].type, 2 * e + 1);
+    return sc_budget_charge(&r->budget, bytes, what, r->name, r->ent[e].line, r->err);
 }
 
 /* How many curves entity e expands into as a trim curve, at most
