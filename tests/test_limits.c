@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "aov.h"
+#include "image.h"
 #include "envelope.h"
 #include "iges_files.h"
 #include "io.h"
@@ -590,4 +591,60 @@ TEST(limits_aov_from_memory)
     sc_aov_free(&a);
     sc_aov_free(&b);
     sc_aov_free(&c);
+}
+
+/* ---- PNG files ---- */
+
+static unsigned long crc32_of(const unsigned char *p, size_t n)
+{
+    unsigned long c = 0xffffffffUL;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++)
+            c = c & 1 ? 0xedb88320UL ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xffffffffUL;
+}
+
+static void put_be32(unsigned char *p, unsigned long v)
+{
+    p[0] = (unsigned char)(v >> 24), p[1] = (unsigned char)(v >> 16);
+    p[2] = (unsigned char)(v >> 8), p[3] = (unsigned char)v;
+}
+
+/* A PNG of 57 bytes whose header claims width x height RGB pixels: the
+ * signature, IHDR and an empty IDAT, which is where libpng stops reading
+ * the header. */
+static const char *png_claiming(int width, int height)
+{
+    unsigned char f[57] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13,
+                           'I', 'H', 'D', 'R'};
+    put_be32(f + 16, (unsigned long)width);
+    put_be32(f + 20, (unsigned long)height);
+    f[24] = 8; /* bit depth */
+    f[25] = 2; /* RGB */
+    put_be32(f + 29, crc32_of(f + 12, 17));
+    memcpy(f + 33, "\0\0\0\0IDAT", 8);
+    put_be32(f + 41, crc32_of(f + 37, 4));
+    memcpy(f + 45, "\0\0\0\0IEND", 8);
+    put_be32(f + 53, crc32_of(f + 49, 4));
+    char name[64];
+    snprintf(name, sizeof name, "claim%dx%d.png", width, height);
+    const char *path = test_write_tmp(name, "");
+    FILE *out = fopen(path, "wb");
+    fwrite(f, 1, sizeof f, out);
+    fclose(out);
+    return path;
+}
+
+/* A PNG header claiming 16384 x 16385 pixels is refused before any
+ * allocation; one within the limit fails on its missing data. */
+TEST(limits_png_header)
+{
+    sc_image img;
+    sc_error err;
+    CHECK_INT(sc_png_read(png_claiming(16384, 16385), &img, &err), SC_FAIL);
+    CHECK_CONTAINS(error_text(&err), "image of 16384 x 16385 pixels: more than the limit");
+    CHECK_INT(sc_png_read(png_claiming(64, 64), &img, &err), SC_FAIL);
+    CHECK_CONTAINS(error_text(&err), "corrupt or truncated PNG");
 }
