@@ -174,7 +174,8 @@ fuzz-smoke: fuzz
 	  echo "fuzz-smoke: $$n ($(FUZZ_SECONDS) s)" && \
 	  $(FUZZ_BUILD)/fuzz_$$n -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=1024 -timeout=10 \
 	    -print_final_stats=1 $$scratch tests/fuzz/corpus/$$n 2>$$scratch.log; \
-	  status=$$?; grep -E "^#[0-9]+[[:space:]]+DONE|stat::number_of_executed_units" $$scratch.log | tail -2; \
+	  status=$$?; grep -E "^#[0-9]+" $$scratch.log | tail -1 | cut -c1-100; \
+	  grep "stat::number_of_executed_units" $$scratch.log; \
 	  rm -rf $$scratch; \
 	  if [ $$status != 0 ]; then tail -40 $$scratch.log; rm -f $$scratch.log; exit 1; fi; \
 	  rm -f $$scratch.log; \
