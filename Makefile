@@ -22,7 +22,7 @@ LIBS    = -lpng -lqhull_r $(GLSLANG_LIBS) -lEGL -ldl -lpthread -lm
 # Debian packages the project needs to build, test and demo.
 DEB_PACKAGES = build-essential pkg-config libpng-dev libqhull-dev glslang-dev glslang-tools \
                libosmesa6-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
-               libglu1-mesa-dev khronos-api gnuplot-nox occt-misc
+               libglu1-mesa-dev khronos-api gnuplot-nox occt-misc clang-14 libclang-rt-14-dev
 
 # The layers, lowest first (docs/README.md). Each folder is compiled with the
 # include paths of the layers it may use and no others, so that a header
@@ -82,7 +82,7 @@ LIB  = $(BUILD)/libsplinecast.a
 CLI  = $(BUILD)/splinecast
 TESTS = $(BUILD)/run_tests
 
-.PHONY: all deps demo test asan clean install uninstall
+.PHONY: all deps demo test asan fuzz fuzz-smoke check-big clean install uninstall
 all: $(CLI) $(TESTS)
 
 deps:
@@ -156,8 +156,52 @@ asan:
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test \
 	  ASAN_OPTIONS=abort_on_error=0 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
 
+# Fuzz targets (tests/fuzz/fuzz_*.c, docs/limits.md): the scene readers, the
+# AOV reader and the key parser under clang's libFuzzer with ASan and UBSan,
+# linked with only the layers they read through. `make fuzz-smoke` runs each
+# for FUZZ_SECONDS on its corpus (tests/fuzz/corpus/NAME, kept minimised),
+# writing new inputs to a scratch folder, never into the tree.
+FUZZ_BUILD   = build-fuzz
+FUZZ_CC      ?= clang-14
+FUZZ_SECONDS ?= 20
+FUZZ_NAMES   = $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_LIB_SRC = $(wildcard gen/base/*.c runtime/model/*.c runtime/io/*.c) gen/key.c
+FUZZ_LIB_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(FUZZ_LIB_SRC)) $(BUILD)/embedded_scenes.o
+FUZZ_SAN     = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
+               -fno-omit-frame-pointer
+$(BUILD)/tests/fuzz/%.o: INC = $(INC_IO) $(INC_GEN)
+.PRECIOUS: $(BUILD)/tests/fuzz/%.o
+fuzz: deps
+	@command -v $(FUZZ_CC) >/dev/null || { echo "fuzz: $(FUZZ_CC) is missing (make deps)" >&2; exit 1; }
+	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) OPT=-O1 SAN="$(FUZZ_SAN)" \
+	  $(patsubst %,$(FUZZ_BUILD)/fuzz_%,$(FUZZ_NAMES))
+$(BUILD)/fuzz_%: $(BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_LIB_OBJ)
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ -lpng -lm
+fuzz-smoke: fuzz
+	@for n in $(FUZZ_NAMES); do \
+	  scratch=$$(mktemp -d) && \
+	  echo "fuzz-smoke: $$n ($(FUZZ_SECONDS) s)" && \
+	  $(FUZZ_BUILD)/fuzz_$$n -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=1024 -timeout=10 \
+	    -print_final_stats=1 $$scratch tests/fuzz/corpus/$$n 2>$$scratch.log; \
+	  status=$$?; grep -E "^#[0-9]+" $$scratch.log | tail -1 | cut -c1-100; \
+	  grep "stat::number_of_executed_units" $$scratch.log; \
+	  rm -rf $$scratch; \
+	  if [ $$status != 0 ]; then tail -40 $$scratch.log; rm -f $$scratch.log; exit 1; fi; \
+	  rm -f $$scratch.log; \
+	done
+
+# The large real work the envelope must admit (docs/limits.md): 100,000
+# bicubic patches, 1.6 M control points, read by the command line.
+.PHONY: check-big
+check-big: $(CLI)
+	@sh tests/big_scene.sh $(BUILD)/big.obj
+	@start=$$(date +%s.%N); \
+	first=$$($(CLI) info $(BUILD)/big.obj | head -1); \
+	echo "check-big: $$first in $$(awk "BEGIN { print $$(date +%s.%N) - $$start }") s"; \
+	rm -f $(BUILD)/big.obj; test "$$first" = "surfaces 100000"
+
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan $(FUZZ_BUILD)
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 

@@ -58,7 +58,15 @@ static void append(char **buf, size_t *len, const char *text72, char section, in
 {
     char record[96];
     snprintf(record, sizeof record, "%-72.72s%c%7d\n", text72, section, seq % 10000000);
-    *buf = realloc(*buf, *len + 82);
+    /* The buffer holds a power of two of at least 1024 bytes, doubled when
+     * full, so that files of thousands of records are written in linear time. */
+    size_t have = 1024, need = 1024;
+    while (have < *len + 1)
+        have *= 2;
+    while (need < *len + 82)
+        need *= 2;
+    if (!*buf || need > have)
+        *buf = realloc(*buf, need);
     memcpy(*buf + *len, record, 82); /* 81 characters and the NUL */
     *len += 81;
 }

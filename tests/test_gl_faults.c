@@ -210,12 +210,16 @@ TEST(gl_fault_version_below_45)
 }
 
 /* No EGL (libglvnd finds no vendor library): EGL asked for, OSMesa draws
- * after a warning that says what EGL lacks (not "EGL_SUCCESS"). */
+ * after a warning that says what EGL lacks (not "EGL_SUCCESS"). Under
+ * AddressSanitizer the leak check is off for this child: what the failed
+ * EGL start leaves behind is Mesa's, in libraries unloaded by then, whose
+ * names a suppression can no longer match. */
 TEST(gl_fault_no_egl_falls_back)
 {
     char cmd[2048], *out = NULL, *err_text = NULL;
     const char *dir = test_tmpdir();
     snprintf(cmd, sizeof cmd,
+             "ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 "
              "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent %s render teapot -o %s/novendor.png "
              "--size 8x8 --frames 1 --backend egl", test_cli, dir);
     CHECK_INT(test_run(cmd, &out, &err_text), 0);

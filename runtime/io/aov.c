@@ -8,7 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include "envelope.h"
 
 #define AOV_MAGIC "SCAOV1"
 #define AOV_MAX_HEADER 2048
@@ -38,7 +41,10 @@ static void *channel_data(const sc_aov *aov, int ch)
     }
 }
 
-void sc_aov_alloc(sc_aov *aov, const sc_camera *cam, int has_iters)
+/* The channels for a cam->width × cam->height image, every pixel a miss;
+ * SC_FAIL when memory runs out (with the size taken from a file, that is an
+ * error to report, not a reason to abort). */
+static int aov_try_alloc(sc_aov *aov, const sc_camera *cam, int has_iters)
 {
     memset(aov, 0, sizeof *aov);
     aov->width = cam->width;
@@ -46,14 +52,29 @@ void sc_aov_alloc(sc_aov *aov, const sc_camera *cam, int has_iters)
     aov->camera = *cam;
     aov->has_iters = has_iters;
     size_t n = (size_t)cam->width * (size_t)cam->height;
-    aov->surface = sc_alloc(n, sizeof(int32_t));
+    aov->surface = malloc(n * sizeof(int32_t));
+    aov->uv = calloc(n * 2, sizeof(float));
+    aov->t = calloc(n, sizeof(float));
+    aov->point = calloc(n * 3, sizeof(float));
+    aov->normal = calloc(n * 3, sizeof(float));
+    aov->iters = has_iters ? calloc(n, sizeof(float)) : NULL;
+    if (!aov->surface || !aov->uv || !aov->t || !aov->point || !aov->normal ||
+        (has_iters && !aov->iters)) {
+        sc_aov_free(aov);
+        return SC_FAIL;
+    }
     for (size_t i = 0; i < n; i++)
         aov->surface[i] = -1;
-    aov->uv = sc_alloc(n * 2, sizeof(float));
-    aov->t = sc_alloc(n, sizeof(float));
-    aov->point = sc_alloc(n * 3, sizeof(float));
-    aov->normal = sc_alloc(n * 3, sizeof(float));
-    aov->iters = has_iters ? sc_alloc(n, sizeof(float)) : NULL;
+    return SC_OK;
+}
+
+void sc_aov_alloc(sc_aov *aov, const sc_camera *cam, int has_iters)
+{
+    if (aov_try_alloc(aov, cam, has_iters)) {
+        sc_log(SC_LOG_ERROR, "out of memory (AOV channels of %d x %d pixels)", cam->width,
+               cam->height);
+        abort();
+    }
 }
 
 void sc_aov_free(sc_aov *aov)
@@ -155,6 +176,111 @@ static int parse_channel(const char *item, char *name, size_t name_size, int *is
     return 1;
 }
 
+/* Where the channel data comes from: a file or memory. */
+typedef struct aov_source {
+    FILE *f;
+    const unsigned char *mem;
+    size_t left;
+} aov_source;
+
+static int source_read(aov_source *src, void *buf, size_t n)
+{
+    if (src->f)
+        return fread(buf, 1, n, src->f) == n;
+    if (src->left < n)
+        return 0;
+    memcpy(buf, src->mem, n);
+    src->mem += n;
+    src->left -= n;
+    return 1;
+}
+
+/* Reads what follows the header line (NUL-terminated, without its
+ * newline): `available` bytes of channel data are there (SIZE_MAX when
+ * unknown, for a pipe). The data's size is checked against the header
+ * before anything is allocated, so a short file cannot ask for gigabytes. */
+static int read_body(const char *path, char *header, aov_source *src, size_t available,
+                     sc_aov *aov, sc_error *err)
+{
+    int width, height, used = 0;
+    char cam_text[600], list[AOV_MAX_HEADER];
+    if (strncmp(header, AOV_MAGIC " ", sizeof AOV_MAGIC) != 0)
+        return sc_fail(err, path, 1, "not an AOV file (expected magic " AOV_MAGIC ")");
+    if (sscanf(header, AOV_MAGIC " %d %d camera=%599s channels=%2047s%n", &width, &height,
+               cam_text, list, &used) != 4 || header[used] != 0)
+        return sc_fail(err, path, 1,
+                       "bad header: expected '" AOV_MAGIC " W H camera=... channels=...'");
+    if (width <= 0 || height <= 0 || (long long)width * height > SC_MAX_IMAGE_PIXELS)
+        return sc_fail(err, path, 1, "bad image size %dx%d (at most %lld pixels; "
+                       "docs/limits.md)", width, height, SC_MAX_IMAGE_PIXELS);
+    sc_camera cam = {.width = width, .height = height};
+    sc_error cam_err = {0};
+    if (sc_camera_parse(cam_text, &cam, &cam_err) != SC_OK)
+        return sc_fail(err, path, 1, "%s", cam_err.message);
+
+    /* First pass over the list: which channels, in which order. */
+    int order[32], comps[32], nitems = 0, seen[CH_COUNT] = {0};
+    for (char *save = NULL, *item = strtok_r(list, ",", &save); item;
+         item = strtok_r(NULL, ",", &save)) {
+        char name[64];
+        int is_int, components;
+        if (nitems == 32 || !parse_channel(item, name, sizeof name, &is_int, &components))
+            return sc_fail(err, path, 1, "bad channel '%s' (expected NAME:i32 or NAME:f32xN)",
+                           item);
+        int ch = -1;
+        for (int c = 0; c < CH_COUNT; c++)
+            if (!strcmp(name, known_channels[c].name))
+                ch = c;
+        if (ch >= 0 && (is_int != known_channels[ch].is_int ||
+                        components != known_channels[ch].components || seen[ch]))
+            return sc_fail(err, path, 1, "channel '%s' has the wrong type or appears twice",
+                           item);
+        if (ch >= 0)
+            seen[ch] = 1;
+        order[nitems] = ch; /* -1: unknown, skipped */
+        comps[nitems++] = components;
+    }
+    for (int c = 0; c < CH_ITERS; c++)
+        if (!seen[c])
+            return sc_fail(err, path, 1, "channel '%s' is missing", known_channels[c].name);
+
+    size_t npix = (size_t)width * (size_t)height, need = 0;
+    for (int k = 0; k < nitems; k++) {
+        size_t bytes = npix * (size_t)comps[k] * 4;
+        if (available != SIZE_MAX && available - need < bytes)
+            return sc_fail(err, path, 0, "truncated: channel %d of %d is incomplete", k + 1,
+                           nitems);
+        need += bytes;
+    }
+    if (available != SIZE_MAX && available > need)
+        return sc_fail(err, path, 0, "unexpected bytes after the last channel");
+    if (aov_try_alloc(aov, &cam, seen[CH_ITERS]))
+        return sc_fail(err, path, 1, "out of memory for the channels of %d x %d pixels", width,
+                       height);
+    /* Through a fixed buffer: the file's words are little-endian. */
+    unsigned char buf[1 << 16];
+    for (int k = 0; k < nitems; k++) {
+        size_t count = npix * (size_t)comps[k];
+        unsigned char *dst = order[k] >= 0 ? channel_data(aov, order[k]) : NULL;
+        for (size_t done = 0; done < count;) {
+            size_t words = count - done < sizeof buf / 4 ? count - done : sizeof buf / 4;
+            if (!source_read(src, buf, words * 4)) {
+                sc_aov_free(aov);
+                return sc_fail(err, path, 0, "truncated: channel %d of %d is incomplete", k + 1,
+                               nitems);
+            }
+            if (dst)
+                get_le32(dst + 4 * done, buf, words);
+            done += words;
+        }
+    }
+    if (src->f && fgetc(src->f) != EOF) {
+        sc_aov_free(aov);
+        return sc_fail(err, path, 0, "unexpected bytes after the last channel");
+    }
+    return SC_OK;
+}
+
 int sc_aov_read(const char *path, sc_aov *aov, sc_error *err)
 {
     memset(aov, 0, sizeof *aov);
@@ -166,83 +292,31 @@ int sc_aov_read(const char *path, sc_aov *aov, sc_error *err)
         fclose(f);
         return sc_fail(err, path, 1, "not an AOV file (no header line)");
     }
+    size_t header_len = strlen(header);
     *strchr(header, '\n') = 0;
-    int width, height, used = 0;
-    char cam_text[600], list[AOV_MAX_HEADER];
-    if (strncmp(header, AOV_MAGIC " ", sizeof AOV_MAGIC) != 0) {
-        fclose(f);
-        return sc_fail(err, path, 1, "not an AOV file (expected magic " AOV_MAGIC ")");
-    }
-    if (sscanf(header, AOV_MAGIC " %d %d camera=%599s channels=%2047s%n", &width, &height,
-               cam_text, list, &used) != 4 || header[used] != 0) {
-        fclose(f);
-        return sc_fail(err, path, 1,
-                       "bad header: expected '" AOV_MAGIC " W H camera=... channels=...'");
-    }
-    if (width <= 0 || height <= 0 || (long long)width * height > (1LL << 28)) {
-        fclose(f);
-        return sc_fail(err, path, 1, "bad image size %dx%d", width, height);
-    }
-    sc_camera cam = {.width = width, .height = height};
-    sc_error cam_err = {0};
-    if (sc_camera_parse(cam_text, &cam, &cam_err) != SC_OK) {
-        fclose(f);
-        return sc_fail(err, path, 1, "%s", cam_err.message);
-    }
-
-    /* First pass over the list: which channels, in which order. */
-    int order[32], comps[32], nitems = 0, seen[CH_COUNT] = {0};
-    for (char *save = NULL, *item = strtok_r(list, ",", &save); item;
-         item = strtok_r(NULL, ",", &save)) {
-        char name[64];
-        int is_int, components;
-        if (nitems == 32 || !parse_channel(item, name, sizeof name, &is_int, &components)) {
-            fclose(f);
-            return sc_fail(err, path, 1, "bad channel '%s' (expected NAME:i32 or NAME:f32xN)",
-                           item);
-        }
-        int ch = -1;
-        for (int c = 0; c < CH_COUNT; c++)
-            if (!strcmp(name, known_channels[c].name))
-                ch = c;
-        if (ch >= 0 && (is_int != known_channels[ch].is_int ||
-                        components != known_channels[ch].components || seen[ch])) {
-            fclose(f);
-            return sc_fail(err, path, 1, "channel '%s' has the wrong type or appears twice",
-                           item);
-        }
-        if (ch >= 0)
-            seen[ch] = 1;
-        order[nitems] = ch; /* -1: unknown, skipped */
-        comps[nitems++] = components;
-    }
-    for (int c = 0; c < CH_ITERS; c++)
-        if (!seen[c]) {
-            fclose(f);
-            return sc_fail(err, path, 1, "channel '%s' is missing", known_channels[c].name);
-        }
-
-    sc_aov_alloc(aov, &cam, seen[CH_ITERS]);
-    size_t npix = (size_t)width * (size_t)height;
-    unsigned char *buf = sc_alloc(npix * 16, 4);
-    for (int k = 0; k < nitems; k++) {
-        size_t count = npix * (size_t)comps[k];
-        if (fread(buf, 4, count, f) != count) {
-            free(buf);
-            fclose(f);
-            sc_aov_free(aov);
-            return sc_fail(err, path, 0, "truncated: channel %d of %d is incomplete", k + 1,
-                           nitems);
-        }
-        if (order[k] >= 0)
-            get_le32(channel_data(aov, order[k]), buf, count);
-    }
-    free(buf);
-    int extra = fgetc(f) != EOF;
+    struct stat st;
+    size_t available = SIZE_MAX;
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode))
+        available = (unsigned long long)st.st_size >= header_len
+                        ? (size_t)st.st_size - header_len : 0;
+    aov_source src = {f, NULL, 0};
+    int status = read_body(path, header, &src, available, aov, err);
     fclose(f);
-    if (extra) {
-        sc_aov_free(aov);
-        return sc_fail(err, path, 0, "unexpected bytes after the last channel");
-    }
-    return SC_OK;
+    return status;
+}
+
+int sc_aov_read_mem(const void *data, size_t size, const char *name, sc_aov *aov, sc_error *err)
+{
+    memset(aov, 0, sizeof *aov);
+    const unsigned char *bytes = data;
+    size_t scan = size < AOV_MAX_HEADER - 1 ? size : AOV_MAX_HEADER - 1;
+    const unsigned char *nl = memchr(bytes, '\n', scan);
+    if (!nl || memchr(bytes, 0, (size_t)(nl - bytes)))
+        return sc_fail(err, name, 1, "not an AOV file (no header line)");
+    char header[AOV_MAX_HEADER];
+    size_t header_len = (size_t)(nl - bytes) + 1;
+    memcpy(header, bytes, header_len - 1);
+    header[header_len - 1] = 0;
+    aov_source src = {NULL, bytes + header_len, size - header_len};
+    return read_body(name, header, &src, size - header_len, aov, err);
 }

@@ -5,6 +5,7 @@
 #ifndef SC_AOV_H
 #define SC_AOV_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "camera.h"
@@ -27,6 +28,10 @@ void sc_aov_alloc(sc_aov *aov, const sc_camera *cam, int has_iters);
 void sc_aov_free(sc_aov *aov);
 /* Written to a temporary file and renamed: nothing half-written on failure. */
 int sc_aov_write(const char *path, const sc_aov *aov, sc_error *err);
+/* Checks the data's size against the header before allocating anything;
+ * every failure (out of memory included) is an error, not an abort. */
 int sc_aov_read(const char *path, sc_aov *aov, sc_error *err);
+/* The same from memory; `name` is used in messages. */
+int sc_aov_read_mem(const void *data, size_t size, const char *name, sc_aov *aov, sc_error *err);
 
 #endif

@@ -10,6 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "envelope.h"
+
 void sc_image_alloc(sc_image *img, int width, int height, int channels)
 {
     img->width = width;
@@ -112,7 +114,16 @@ int sc_png_read(const char *path, sc_image *img, sc_error *err)
     int channels = png_get_channels(png, info);
     if (channels != 3 && channels != 4)
         png_error(png, "unsupported channel count");
-    pixels = sc_alloc((size_t)width * (size_t)height, (size_t)channels);
+    /* The size comes from a 33-byte header: checked, and memory that is not
+     * there is an error, not an abort. */
+    if ((long long)width * height > SC_MAX_IMAGE_PIXELS ||
+        !(pixels = malloc((size_t)width * (size_t)height * (size_t)channels))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        fclose(f);
+        return sc_fail(err, path, 0, "image of %d x %d pixels: more than %s", width, height,
+                       (long long)width * height > SC_MAX_IMAGE_PIXELS
+                           ? "the limit (docs/limits.md)" : "the memory available");
+    }
     size_t stride = (size_t)width * (size_t)channels;
     for (int y = 0; y < height; y++)
         png_read_row(png, pixels + (size_t)y * stride, NULL);

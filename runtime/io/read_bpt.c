@@ -4,6 +4,7 @@
  * polynomial NURBS surface with clamped knots [0..0 1..1]. Any degree is
  * read; every count is checked against what is left of the file before
  * anything is allocated from it. */
+#include "envelope.h"
 #include "io.h"
 
 #include <math.h>
@@ -17,6 +18,7 @@ typedef struct bpt_lexer {
     int line;          /* line of the current position */
     int token_line;    /* line of the last token read */
     sc_error *err;
+    sc_budget budget;  /* geometry charged so far (envelope.h) */
 } bpt_lexer;
 
 static int is_space(char c)
@@ -100,7 +102,7 @@ static int read_patch(bpt_lexer *lx, int index, sc_scene *scene)
 {
     size_t left = tokens_left(lx);
     long du, dv;
-    long max_degree = left < 1000000 ? (long)left : 1000000;
+    long max_degree = left < SC_MAX_DEGREE ? (long)left : SC_MAX_DEGREE;
     if (read_count(lx, "degree u", 1, max_degree, &du))
         return SC_FAIL;
     int patch_line = lx->token_line;
@@ -111,6 +113,9 @@ static int read_patch(bpt_lexer *lx, int index, sc_scene *scene)
         return sc_fail(lx->err, lx->name, patch_line, "file ends early: patch %d of degree %ld x "
                        "%ld needs %zu control points, more than the rest of the file can hold", index, du, dv,
                        npoints);
+    if (sc_budget_charge(&lx->budget, sc_surface_bytes((int)du, (int)dv, (int)du + 1, (int)dv + 1),
+                         "patch", lx->name, patch_line, lx->err))
+        return SC_FAIL;
     sc_surface *s = sc_scene_add_surface(scene);
     snprintf(s->name, sizeof s->name, "patch%d", index);
     sc_surface_alloc(s, (int)du, (int)dv, (int)du + 1, (int)dv + 1);
@@ -163,6 +168,6 @@ int sc_read_bpt(const char *text, size_t size, const char *name, sc_scene *scene
     sc_scene_init(scene);
     if (sc_check_text(text, size, name, err))
         return SC_FAIL;
-    bpt_lexer lx = {text, text + size, text, name, 1, 1, err};
+    bpt_lexer lx = {text, text + size, text, name, 1, 1, err, {0, 0}};
     return sc_finish_read(read_all(&lx, scene), name, scene);
 }

@@ -13,8 +13,9 @@
  * leniently. Entity data is read strictly: a count larger than the data, a
  * pointer outside the directory or a reference cycle fails the file with a
  * message naming the entity, because reading on would mean interpreting
- * someone else's numbers. Every allocation is bounded by the data present.
+ * someone else's numbers. Allocations are bounded by the data and by envelope.h.
  * Entities are parsed on demand from the surfaces down. */
+#include "envelope.h"
 #include "io.h"
 #include "nurbs.h"
 
@@ -52,6 +53,8 @@ typedef struct entity {
     unsigned char busy;       /* on the current conversion path: a revisit is a cycle */
     unsigned char referenced; /* used as the surface of a 142/144/143/141/510/140 */
     unsigned char has_matrix;
+    unsigned char counting;   /* on the current path of count_pieces */
+    int pieces;               /* curves it expands into (count_pieces), 0 until counted */
     double matrix[12];        /* its own matrix, for a 124, once parsed */
 } entity;
 
@@ -69,7 +72,15 @@ typedef struct params {
     char *text;
     token *tok;
     int ntok, cap;
+    int borrowed;  /* text and tok belong to the reader's cache */
 } params;
+
+/* A parameter record tokenised once, by its first P line, however many
+ * entities point at it: `status` is what stopped tokenize, `at` and `n` where. */
+typedef struct parsed_record {
+    int done, status, at, n;
+    params p;
+} parsed_record;
 
 typedef struct curve_list {
     sc_curve *items;
@@ -86,6 +97,9 @@ typedef struct reader {
     char pdelim, rdelim;
     entity *ent;
     int nent;
+    parsed_record *parsed;   /* per P record, filled on demand */
+    size_t tokenised;        /* characters tokenised so far (bounded, see tokenise_record) */
+    sc_budget budget;        /* geometry charged so far (envelope.h) */
     int warned_no_pcurve, warned_unsupported;
     int unsupported_entity; /* the curve that stopped the last loop */
 } reader;
@@ -282,8 +296,10 @@ static int tokenize(const char *t, int n, char pd, char rd, params *p, int *at)
 
 static void params_free(params *p)
 {
-    free(p->text);
-    free(p->tok);
+    if (!p->borrowed) {
+        free(p->text);
+        free(p->tok);
+    }
     memset(p, 0, sizeof *p);
 }
 
@@ -392,53 +408,72 @@ static int get_count(reader *r, const params *p, int i, int per, int *out)
     return SC_OK;
 }
 
-static int load_params_into(reader *r, int e, params *p)
+/* Tokenises the record at P line `pdata` into the cache. The directory's
+ * line count is a hint (up to 64 lines are trusted): lines are added until
+ * the record delimiter, doubling so that a wrong count stays cheap. Pointers
+ * into the middle of a long record would each tokenise the rest: the lines
+ * tokenised per file are bounded. */
+static int tokenise_record(reader *r, int e, int pdata, parsed_record *pr)
 {
+    int np = r->sec_count[SEC_P];
+    params *p = &pr->p;
+    p->first_record = r->sec_first[SEC_P] + pdata - 1;
+    int avail = np - (pdata - 1), nlines = r->ent[e].nlines;
+    int want = nlines < 1 ? 1 : nlines < avail ? nlines : avail;
+    want = want < 64 ? want : 64;
+    for (;;) {
+        p->text = sc_realloc(p->text, (size_t)want * PARAM_COLS, 1);
+        pr->n = gather(r, p->first_record, want, PARAM_COLS, p->text);
+        pr->status = tokenize(p->text, pr->n, r->pdelim, r->rdelim, p, &pr->at);
+        const token *last = pr->status == TOK_END ? &p->tok[p->ntok - 1] : NULL;
+        r->tokenised += last ? (size_t)(last->start + last->len) : (size_t)pr->n;
+        if (r->tokenised > (size_t)4 * np * PARAM_COLS + ((size_t)1 << 20))
+            return fail_entity(r, e, r->rec[p->first_record].line, "parameter data pointers "
+                               "into the middle of other entities' data: tokenising them takes "
+                               "more than 4 times the parameter section");
+        if (pr->status != TOK_CUT || want == avail)
+            break;
+        want = want > avail / 2 ? avail : 2 * want;
+    }
+    p->borrowed = 1;
+    pr->done = 1;
+    return SC_OK;
+}
+
+/* The entity's parameters: a view of the cache, never to be freed. */
+static int load_params(reader *r, int e, params *p)
+{
+    memset(p, 0, sizeof *p);
     p->entity = e;
     const entity *en = &r->ent[e];
     int np = r->sec_count[SEC_P];
     if (en->pdata < 1 || en->pdata > np)
         return fail_entity(r, e, 0, "parameter data pointer %d is outside the P section (1..%d)",
                            en->pdata, np);
-    p->first_record = r->sec_first[SEC_P] + en->pdata - 1;
-    int avail = np - (en->pdata - 1);
-    int want = en->nlines < 1 ? 1 : en->nlines < avail ? en->nlines : avail;
-    /* The directory's line count is a hint: records are added until the
-     * record delimiter appears, doubling so that a wrong count stays cheap. */
-    for (;;) {
-        p->text = sc_realloc(p->text, (size_t)want * PARAM_COLS, 1);
-        int n = gather(r, p->first_record, want, PARAM_COLS, p->text);
-        int at, status = tokenize(p->text, n, r->pdelim, r->rdelim, p, &at);
-        int line = r->rec[p->first_record + (at < n ? at : n - 1) / PARAM_COLS].line;
-        if (status == TOK_END)
-            break;
-        if (status == TOK_BAD_STRING)
-            return fail_entity(r, e, line, "text after a Hollerith string where a delimiter "
-                               "('%c' or '%c') belongs", r->pdelim, r->rdelim);
-        if (want == avail && at < n)
-            return fail_entity(r, e, line, "a Hollerith string runs past the end of the "
-                               "parameter data (its count is larger than the text)");
-        if (want == avail)
-            return fail_entity(r, e, line, "the parameter data ends before the record delimiter "
-                               "'%c' (truncated file?)", r->rdelim);
-        want = want > avail / 2 ? avail : 2 * want;
-    }
+    if (!r->parsed)
+        r->parsed = sc_alloc((size_t)np, sizeof *r->parsed);
+    parsed_record *pr = &r->parsed[en->pdata - 1];
+    if (!pr->done && tokenise_record(r, e, en->pdata, pr))
+        return SC_FAIL;
+    *p = pr->p;
+    p->entity = e;
+    int n = pr->n, at = pr->at;
+    int line = r->rec[p->first_record + (at < n ? at : n - 1) / PARAM_COLS].line;
+    if (pr->status == TOK_BAD_STRING)
+        return fail_entity(r, e, line, "text after a Hollerith string where a delimiter "
+                           "('%c' or '%c') belongs", r->pdelim, r->rdelim);
+    if (pr->status == TOK_CUT && at < n)
+        return fail_entity(r, e, line, "a Hollerith string runs past the end of the "
+                           "parameter data (its count is larger than the text)");
+    if (pr->status == TOK_CUT)
+        return fail_entity(r, e, line, "the parameter data ends before the record delimiter "
+                           "'%c' (truncated file?)", r->rdelim);
     int type;
     if (p->ntok < 1 || p->tok[0].is_string || get_int(r, p, 0, &type) || type != en->type)
         return fail_entity(r, e, token_line(r, p, 0), "its parameter data (P line %d) does not "
                            "start with its type %d: wrong parameter data pointer?", en->pdata,
                            en->type);
     return SC_OK;
-}
-
-/* The entity's parameters; on failure nothing stays allocated. */
-static int load_params(reader *r, int e, params *p)
-{
-    memset(p, 0, sizeof *p);
-    if (load_params_into(r, e, p) == SC_OK)
-        return SC_OK;
-    params_free(p);
-    return SC_FAIL;
 }
 
 /* ------------------------------------------------------------------ */
@@ -585,7 +620,6 @@ static int matrix_of_124(reader *r, int t, double m[12])
             status = need_params(r, &p, 12);
         for (int i = 0; i < 12 && status == SC_OK; i++)
             status = get_real(r, &p, i + 1, &en->matrix[i]);
-        params_free(&p);
         if (status)
             return SC_FAIL;
         en->has_matrix = 1;
@@ -649,7 +683,6 @@ static int entity_color(reader *r, int e, float rgb[3])
         status = need_params(r, &p, 3);
     for (int i = 0; i < 3 && status == SC_OK; i++)
         status = get_real(r, &p, i + 1, &v[i]);
-    params_free(&p);
     if (status)
         return SC_FAIL;
     for (int i = 0; i < 3; i++)
@@ -703,6 +736,9 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
     if (m1 < 1 || m2 < 1)
         return fail_entity(r, e, token_line(r, p, 3), "degree %d x %d: a surface needs degree 1 "
                            "or more in both directions", m1, m2);
+    if (m1 > SC_MAX_DEGREE || m2 > SC_MAX_DEGREE)
+        return fail_entity(r, e, token_line(r, p, 3), "degree %d x %d: above the %d this reader "
+                           "accepts (docs/limits.md)", m1, m2, SC_MAX_DEGREE);
     if (k1 < m1 || k2 < m2)
         return fail_entity(r, e, token_line(r, p, 1), "degree %d x %d needs at least %d x %d "
                            "control points, has %d x %d", m1, m2, m1 + 1, m2 + 1, k1 + 1, k2 + 1);
@@ -712,7 +748,9 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
                            "the %d parameters present (counts larger than the data)", nu, nv,
                            p->ntok - 1);
     long long nku = nu + m1 + 1, nkv = nv + m2 + 1;
-    if (need_params(r, p, 9 + nku + nkv + 4 * nu * nv))
+    if (need_params(r, p, 9 + nku + nkv + 4 * nu * nv) ||
+        sc_budget_charge(&r->budget, sc_surface_bytes(m1, m2, (int)nu, (int)nv), "surface",
+                         r->name, token_line(r, p, 1), r->err))
         return SC_FAIL;
     sc_surface_alloc(s, m1, m2, (int)nu, (int)nv);
     int at = 10;
@@ -775,7 +813,6 @@ static int read_128(reader *r, int e, sc_surface *s)
     int status = load_params(r, e, &p);
     if (status == SC_OK)
         status = read_128_into(r, &p, s);
-    params_free(&p);
     if (status)
         sc_surface_free(s);
     return status;
@@ -888,6 +925,9 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     if (deg < 1)
         return fail_entity(r, e, token_line(r, p, 2), "degree %d: a curve needs degree 1 or more",
                            deg);
+    if (deg > SC_MAX_DEGREE)
+        return fail_entity(r, e, token_line(r, p, 2), "degree %d: above the %d this reader "
+                           "accepts (docs/limits.md)", deg, SC_MAX_DEGREE);
     if (k < deg)
         return fail_entity(r, e, token_line(r, p, 1), "degree %d needs at least %d control "
                            "points, has %d", deg, deg + 1, k + 1);
@@ -935,6 +975,49 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     return SC_OK;
 }
 
+/* Charges the curves [first, n) just read from entity e to the budget. */
+static int charge_curves(reader *r, int e, const curve_list *l, int first)
+{
+    if (l->n > SC_MAX_LOOP_PIECES)
+        return fail_entity(r, e, 0, "a trim loop of more than %d curves (docs/limits.md)",
+                           SC_MAX_LOOP_PIECES);
+    size_t bytes = 0;
+    char what[64];
+    for (int i = first; i < l->n; i++)
+        bytes += sc_curve_bytes(2, l->items[i].degree, l->items[i].ncp);
+    snprintf(what, sizeof what, "entity %d (D %d) in a trim loop", r->ent[e].type, 2 * e + 1);
+    return sc_budget_charge(&r->budget, bytes, what, r->name, r->ent[e].line, r->err);
+}
+
+/* How many curves entity e expands into as a trim curve, at most
+ * SC_MAX_LOOP_PIECES + 1, remembered per entity so that a composite listing
+ * another many times is counted in time linear in the entities. Anything
+ * that is not a composite is one curve; errors (cycles, bad pointers) count
+ * as one here and are reported when the loop is built. */
+static int count_pieces(reader *r, int e, int depth)
+{
+    entity *en = &r->ent[e];
+    if (en->pieces)
+        return en->pieces;
+    if (en->type != 102 || en->counting || depth > MAX_NESTING)
+        return 1;
+    params p; /* the cache's: nothing to free */
+    int count = 0, member;
+    long long total = 0;
+    sc_error *err = r->err;
+    r->err = NULL;
+    if (!load_params(r, e, &p) && !need_params(r, &p, 1) && !get_count(r, &p, 1, 1, &count)) {
+        en->counting = 1;
+        for (int i = 0; i < count && total <= SC_MAX_LOOP_PIECES; i++)
+            if (get_pointer(r, &p, 2 + i, &member) == SC_OK && member >= 0)
+                total += count_pieces(r, member, depth + 1);
+        en->counting = 0;
+    }
+    r->err = err;
+    en->pieces = total > SC_MAX_LOOP_PIECES ? SC_MAX_LOOP_PIECES + 1 : total < 1 ? 1 : (int)total;
+    return en->pieces;
+}
+
 /* Curves [first, n) of the list run backwards: last first, each reversed. */
 static void reverse_chain(curve_list *l, int first)
 {
@@ -978,6 +1061,13 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
     case 126: status = read_126(r, &p, m, out); break;
     case 102: {
         int count = 0;
+        /* Members may repeat: the expansion is counted before it is built. */
+        if (count_pieces(r, e, depth) > SC_MAX_LOOP_PIECES - out->n) {
+            en->busy = 0;
+            return fail_entity(r, e, 0, "composite curve expands to more than %d curves in one "
+                               "trim loop (members listed repeatedly; docs/limits.md)",
+                               SC_MAX_LOOP_PIECES);
+        }
         status = need_params(r, &p, 1);
         if (status == SC_OK)
             status = get_count(r, &p, 1, 1, &count);
@@ -994,7 +1084,8 @@ static int trim_curves(reader *r, int e, const double parent[12], int reversed, 
     }
     }
     en->busy = 0;
-    params_free(&p);
+    if (status == SC_OK && en->type != 102)
+        status = charge_curves(r, e, out, first);
     if (status == SC_OK && reversed)
         reverse_chain(out, first);
     return status;
@@ -1051,7 +1142,6 @@ static int loop_of_142(reader *r, int e, curve_list *out)
         status = get_pointer(r, &p, 2, &sptr);
     if (status == SC_OK)
         status = get_pointer(r, &p, 3, &bptr);
-    params_free(&p);
     if (status)
         return SC_FAIL;
     if (bptr < 0)
@@ -1139,7 +1229,6 @@ static int loop_of(reader *r, int e, curve_list *out)
         return SC_FAIL;
     int status = r->ent[e].type == 141 ? loop_of_141_params(r, &p, out)
                                        : loop_of_508_params(r, &p, out);
-    params_free(&p);
     return status;
 }
 
@@ -1401,6 +1490,10 @@ static void unwrap_seams(sc_surface *s)
 static int build_trimmed(reader *r, int owner, int base, const int *loops, int nloops,
                          int has_outer)
 {
+    /* Loop entities may be listed many times: each costs its curves. */
+    if (sc_budget_charge(&r->budget, (size_t)nloops * sizeof(sc_loop), "trimmed surface",
+                         r->name, r->ent[owner].line, r->err))
+        return SC_FAIL;
     sc_surface s;
     if (read_128(r, base, &s))
         return SC_FAIL;
@@ -1533,7 +1626,6 @@ static void mark_references(reader *r)
             status = need_params(r, &p, i);
         if (status == SC_OK)
             status = get_pointer(r, &p, i, &target);
-        params_free(&p);
         if (status == SC_OK && target >= 0)
             r->ent[target].referenced = 1;
     }
@@ -1560,7 +1652,6 @@ static int convert_all(reader *r)
             if (status == SC_OK)
                 status = type == 144 ? convert_144(r, &p)
                          : type == 143 ? convert_143(r, &p) : convert_510(r, &p);
-            params_free(&p);
         } else if (type == 128 && !r->ent[e].referenced) {
             sc_surface s;
             status = read_128(r, e, &s);
@@ -1598,6 +1689,11 @@ int sc_read_iges(const char *text, size_t size, const char *name, sc_scene *scen
         mark_references(&r);
         status = convert_all(&r);
     }
+    for (int i = 0; r.parsed && i < r.sec_count[SEC_P]; i++) {
+        free(r.parsed[i].p.text);
+        free(r.parsed[i].p.tok);
+    }
+    free(r.parsed);
     free(r.rec);
     free(r.ent);
     return sc_finish_read(status, name, scene);

@@ -144,6 +144,8 @@ static int add_vertex(obj_reader *r, obj_vertex_list *list, int min, int max, co
     int colour_extension = list == &r->verts && n == 6;
     if ((n < min || n > max) && !colour_extension)
         return fail(r, r->line, "%s needs %d to %d numbers, has %d", what, min, max, n);
+    if (sc_budget_charge(&r->budget, sizeof *list->v, what, r->name, r->line, r->err))
+        return SC_FAIL;
     if (list->count == list->cap) {
         list->cap = list->cap ? 2 * list->cap : 64;
         list->v = sc_realloc(list->v, (size_t)list->cap, sizeof *list->v);
@@ -244,7 +246,8 @@ static void load_mtllib(obj_reader *r)
         char *data;
         size_t size;
         sc_error e;
-        if (sc_read_file(path, &data, &size, &e)) {
+        /* Only colours come from it: a device or a huge file is refused. */
+        if (sc_read_file_max(path, SC_MAX_MTL_BYTES, 1, &data, &size, &e)) {
             sc_log(SC_LOG_WARN, "%s:%d: material library %s: %s (default colours used)", r->name,
                    r->line, path, e.message);
             continue;
@@ -352,6 +355,9 @@ static int statement_loop(obj_reader *r, int is_hole)
     int n = r->ntok - 1;
     if (n < 3 || n % 3)
         return fail(r, r->line, "%s needs groups of three: u0 u1 curv2d (has %d values)", what, n);
+    if (n / 3 > SC_MAX_LOOP_PIECES)
+        return fail(r, r->line, "%s has %d curves: more than the %d a loop may have "
+                    "(docs/limits.md)", what, n / 3, SC_MAX_LOOP_PIECES);
     el->loops = sc_realloc(el->loops, (size_t)el->nloops + 1, sizeof *el->loops);
     obj_loop_ref *loop = &el->loops[el->nloops++];
     loop->is_hole = is_hole;
@@ -410,7 +416,7 @@ static int statement_deg(obj_reader *r)
         return fail(r, r->line, "deg needs one or two degrees: deg DU [DV]");
     long d[2] = {0, 0};
     for (int i = 0; i + 1 < r->ntok; i++)
-        if (parse_int(r, r->tok[1 + i], "degree", 1, 1000000, &d[i]))
+        if (parse_int(r, r->tok[1 + i], "degree", 1, SC_MAX_DEGREE, &d[i]))
             return SC_FAIL;
     r->deg[0] = (int)d[0];
     r->deg[1] = (int)d[1];

@@ -7,6 +7,7 @@
 
 #include <stdarg.h>
 
+#include "envelope.h"
 #include "io.h"
 
 typedef struct obj_vertex {
@@ -88,6 +89,7 @@ typedef struct obj_reader {
     char cur_name[64];
     float cur_color[3];
     obj_element el;
+    sc_budget budget; /* geometry charged so far (envelope.h) */
     /* what was skipped */
     int polygons, space_curves, special_curves, special_points, connections, shell_commands;
     int unknown_statements;

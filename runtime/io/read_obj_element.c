@@ -114,6 +114,11 @@ int sc_obj_finish_curv2(obj_reader *r)
         return fail(r, el->line, "curv2 has %d control points; degree %d with its parm u needs %d",
                     el->nidx, el->deg[0], ncp);
     }
+    if (sc_budget_charge(&r->budget, sc_curve_bytes(2, el->deg[0], ncp), "curv2", r->name,
+                         el->line, r->err)) {
+        free(knots);
+        return SC_FAIL;
+    }
     sc_curve c;
     sc_curve_alloc(&c, 2, el->deg[0], ncp);
     memcpy(c.knots, knots, sizeof(double) * (size_t)(ncp + el->deg[0] + 1));
@@ -160,6 +165,10 @@ static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_re
         return fail(r, loop->line, "%s range [%.17g, %.17g] lies outside the parameter range "
                     "[%.17g, %.17g] of curve %d", loop->is_hole ? "hole" : "trim", ref->t0,
                     ref->t1, t0, t1, ref->curve + 1);
+    /* A curve may be used by many pieces: each copy is charged. */
+    if (sc_budget_charge(&r->budget, sc_curve_bytes(2, c->degree, c->ncp),
+                         loop->is_hole ? "hole" : "trim", r->name, loop->line, r->err))
+        return SC_FAIL;
     /* Ends within the tolerance of the domain's are the domain's. */
     sc_curve_copy(out, c);
     sc_curve_restrict(out, lo > t0 + tol ? lo : t0, hi < t1 - tol ? hi : t1);
@@ -211,6 +220,12 @@ int sc_obj_finish_surf(obj_reader *r)
                    el->range[2 * dir], el->range[2 * dir + 1], k0, k1, a, b);
         lim[2 * dir] = a;
         lim[2 * dir + 1] = b;
+    }
+    if (sc_budget_charge(&r->budget, sc_surface_bytes(el->deg[0], el->deg[1], n[0], n[1]),
+                         "surf", r->name, el->line, r->err)) {
+        free(knots[0]);
+        free(knots[1]);
+        return SC_FAIL;
     }
     sc_surface s;
     memset(&s, 0, sizeof s);

@@ -6,7 +6,11 @@
  *
  * Self-crossings are found on a polyline flattened to FLAT_TOL of the
  * domain size; its segments are binned in a uniform grid so that loops of
- * thousands of pieces are not tested pair by pair. Whether a crossing
+ * thousands of pieces are not tested pair by pair. Segments that overlap
+ * (a curve repeated many times) all land in the same cells, where the
+ * pairs grow with the square of their number: past PAIR_BUDGET tests per
+ * segment the loop is dropped with a warning instead of being checked for
+ * minutes (a simple loop of real data needs a few per segment). Whether a crossing
  * counts depends only on the loop's shape, never on what was repaired, so
  * that validating a validated loop (a scene written and read back) changes
  * nothing. */
@@ -34,6 +38,10 @@ static const double FLAT_TOL = 1e-6;
 /* Subdivision depth per Bézier segment, and vertices per loop, beyond
  * which a curve is flattened no further. */
 enum { FLAT_MAX_DEPTH = 14, FLAT_MAX_POINTS = 1 << 22, GRID_MAX_SIDE = 2048 };
+/* Grid entries and segment pairs tested per loop: PAIR_BUDGET per segment,
+ * and at least PAIR_FLOOR (any loop of up to about 2,900 segments is
+ * checked whole). */
+enum { PAIR_BUDGET = 16, PAIR_FLOOR = 1 << 22, CROSSING_UNKNOWN = -1 };
 
 /* ---- curve ends ---- */
 
@@ -306,11 +314,13 @@ static int cell_of(double x, double origin, double size, int n)
     return i < 0 ? 0 : i >= n ? n - 1 : i;
 }
 
-/* Calls back for every cell the segment passes through (conservatively:
- * column by column, the y range of the segment within the column). */
-static void cover_cells(const grid *g, const double *a, const double *b, int seg, int *count,
-                        int *fill)
+/* Counts or fills every cell the segment passes through (conservatively:
+ * column by column, the y range of the segment within the column), and
+ * returns how many. */
+static int cover_cells(const grid *g, const double *a, const double *b, int seg, int *count,
+                       int *fill)
 {
+    int cells = 0;
     double xmin = fmin(a[0], b[0]), xmax = fmax(a[0], b[0]);
     int ix0 = cell_of(xmin, g->x0, g->cell_w, g->nx);
     int ix1 = cell_of(xmax, g->x0, g->cell_w, g->nx);
@@ -335,13 +345,16 @@ static void cover_cells(const grid *g, const double *a, const double *b, int seg
                 g->entries[fill[cell]++] = seg;
             else
                 count[cell]++;
+            cells++;
         }
     }
+    return cells;
 }
 
 /* Finds a crossing between two segments of the closed polyline that are
  * not neighbours (corner lobes excepted); returns 1, the two segment
- * indices and the crossing point. */
+ * indices and the crossing point, or CROSSING_UNKNOWN past the budget of
+ * pair tests. */
 static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b, double at[2])
 {
     int n = pl->n;
@@ -368,8 +381,18 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
     int ncells = g.nx * g.ny;
     g.start = sc_alloc((size_t)ncells + 1, sizeof(int));
     int *count = sc_alloc((size_t)ncells, sizeof(int));
-    for (int i = 0; i < n; i++)
-        cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, count, NULL);
+    /* Long overlapping segments cover many cells each: the entries share
+     * the budget of the pair tests. */
+    long long budget = (long long)PAIR_BUDGET * n > PAIR_FLOOR ? (long long)PAIR_BUDGET * n
+                                                                : PAIR_FLOOR;
+    for (int i = 0; i < n; i++) {
+        budget -= cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, count, NULL);
+        if (budget < 0) {
+            free(count);
+            free(g.start);
+            return CROSSING_UNKNOWN;
+        }
+    }
     for (int c = 0; c < ncells; c++)
         g.start[c + 1] = g.start[c] + count[c];
     g.entries = sc_alloc((size_t)g.start[ncells], sizeof(int));
@@ -378,7 +401,12 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
         cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, NULL, count);
     int found = 0;
     for (int c = 0; c < ncells && !found; c++)
-        for (int x = g.start[c]; x < g.start[c + 1] && !found; x++)
+        for (int x = g.start[c]; x < g.start[c + 1] && !found; x++) {
+            budget -= g.start[c + 1] - x - 1;
+            if (budget < 0) {
+                found = CROSSING_UNKNOWN;
+                break;
+            }
             for (int y = x + 1; y < g.start[c + 1]; y++) {
                 int i = g.entries[x], j = g.entries[y];
                 if (i > j) {
@@ -395,6 +423,7 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
                     break;
                 }
             }
+        }
     free(count);
     free(g.start);
     free(g.entries);
@@ -504,7 +533,11 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
     int a, b;
     double at[2];
     int crossing = find_crossing(&pl, size, &a, &b, at);
-    if (crossing) {
+    if (crossing == CROSSING_UNKNOWN) {
+        sc_log(SC_LOG_WARN, LOOP_FMT " dropped: %d of its segments overlap so much that "
+               "checking it for self-crossings would take too long (collinear repeated "
+               "curves?)", LOOP_ARGS(site), pl.n);
+    } else if (crossing) {
         char name_a[64], name_b[64];
         sc_log(SC_LOG_WARN, LOOP_FMT " dropped: it crosses itself (%s and %s, near u=%.6g "
                "v=%.6g)", LOOP_ARGS(site), curve_name(lay, pl.curve[a], name_a, sizeof name_a),
