@@ -90,14 +90,14 @@ static void bpt_patch(text *t, int du, int dv)
 TEST(limits_degree_bpt)
 {
     text t = {0};
-    bpt_patch(&t, SC_MAX_DEGREE, 1);
+    bpt_patch(&t, SC_READ_MAX_DEGREE, 1);
     sc_scene scene;
     sc_error err;
     CHECK_INT(sc_read_bpt(t.s, t.n, "t.bpt", &scene, &err), SC_OK);
-    CHECK_INT(scene.surfaces[0].deg_u, SC_MAX_DEGREE);
+    CHECK_INT(scene.surfaces[0].deg_u, SC_READ_MAX_DEGREE);
     sc_scene_free(&scene);
     t.n = 0;
-    bpt_patch(&t, SC_MAX_DEGREE + 1, 1);
+    bpt_patch(&t, SC_READ_MAX_DEGREE + 1, 1);
     int status = sc_read_bpt(t.s, t.n, "t.bpt", &scene, &err);
     free(t.s);
     CHECK_INT(status, SC_FAIL);
@@ -106,7 +106,7 @@ TEST(limits_degree_bpt)
 
 TEST(limits_degree_obj)
 {
-    for (int deg = SC_MAX_DEGREE; deg <= SC_MAX_DEGREE + 1; deg++) {
+    for (int deg = SC_READ_MAX_DEGREE; deg <= SC_READ_MAX_DEGREE + 1; deg++) {
         char line[64];
         snprintf(line, sizeof line, "deg %d\n", deg);
         text t = {0};
@@ -117,7 +117,7 @@ TEST(limits_degree_obj)
         int status = read_obj(&t, &scene, &err, &w);
         free(t.s);
         sc_scene_free(&scene);
-        CHECK_INT(status, deg <= SC_MAX_DEGREE ? SC_OK : SC_FAIL);
+        CHECK_INT(status, deg <= SC_READ_MAX_DEGREE ? SC_OK : SC_FAIL);
         if (status)
             CHECK_CONTAINS(error_text(&err), "t.obj:1: degree 65 is out of range (1 to 64)");
     }

@@ -102,7 +102,7 @@ static int read_patch(bpt_lexer *lx, int index, sc_scene *scene)
 {
     size_t left = tokens_left(lx);
     long du, dv;
-    long max_degree = left < SC_MAX_DEGREE ? (long)left : SC_MAX_DEGREE;
+    long max_degree = left < SC_READ_MAX_DEGREE ? (long)left : SC_READ_MAX_DEGREE;
     if (read_count(lx, "degree u", 1, max_degree, &du))
         return SC_FAIL;
     int patch_line = lx->token_line;

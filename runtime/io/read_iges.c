@@ -736,9 +736,9 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
     if (m1 < 1 || m2 < 1)
         return fail_entity(r, e, token_line(r, p, 3), "degree %d x %d: a surface needs degree 1 "
                            "or more in both directions", m1, m2);
-    if (m1 > SC_MAX_DEGREE || m2 > SC_MAX_DEGREE)
+    if (m1 > SC_READ_MAX_DEGREE || m2 > SC_READ_MAX_DEGREE)
         return fail_entity(r, e, token_line(r, p, 3), "degree %d x %d: above the %d this reader "
-                           "accepts (docs/limits.md)", m1, m2, SC_MAX_DEGREE);
+                           "accepts (docs/limits.md)", m1, m2, SC_READ_MAX_DEGREE);
     if (k1 < m1 || k2 < m2)
         return fail_entity(r, e, token_line(r, p, 1), "degree %d x %d needs at least %d x %d "
                            "control points, has %d x %d", m1, m2, m1 + 1, m2 + 1, k1 + 1, k2 + 1);
@@ -925,9 +925,9 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     if (deg < 1)
         return fail_entity(r, e, token_line(r, p, 2), "degree %d: a curve needs degree 1 or more",
                            deg);
-    if (deg > SC_MAX_DEGREE)
+    if (deg > SC_READ_MAX_DEGREE)
         return fail_entity(r, e, token_line(r, p, 2), "degree %d: above the %d this reader "
-                           "accepts (docs/limits.md)", deg, SC_MAX_DEGREE);
+                           "accepts (docs/limits.md)", deg, SC_READ_MAX_DEGREE);
     if (k < deg)
         return fail_entity(r, e, token_line(r, p, 1), "degree %d needs at least %d control "
                            "points, has %d", deg, deg + 1, k + 1);

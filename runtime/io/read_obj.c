@@ -416,7 +416,7 @@ static int statement_deg(obj_reader *r)
         return fail(r, r->line, "deg needs one or two degrees: deg DU [DV]");
     long d[2] = {0, 0};
     for (int i = 0; i + 1 < r->ntok; i++)
-        if (parse_int(r, r->tok[1 + i], "degree", 1, SC_MAX_DEGREE, &d[i]))
+        if (parse_int(r, r->tok[1 + i], "degree", 1, SC_READ_MAX_DEGREE, &d[i]))
             return SC_FAIL;
     r->deg[0] = (int)d[0];
     r->deg[1] = (int)d[1];

@@ -16,7 +16,7 @@
 
 /* Degree of a surface (either direction) or trim curve a reader accepts:
  * CAD systems stay below 30; the cost of evaluation grows with its square. */
-#define SC_MAX_DEGREE 64
+#define SC_READ_MAX_DEGREE 64
 /* Bytes of a scene file (and of a material library, which is only colours). */
 #define SC_MAX_FILE_BYTES ((size_t)1 << 30)
 #define SC_MAX_MTL_BYTES ((size_t)16 << 20)
