@@ -329,7 +329,7 @@ int scg_key_check(const scg_key *key, sc_error *err)
         missing = "view-dependent initial values (view) are";
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
-    bool subdivides = key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_HYBRID;
+    bool subdivides = key->method == SC_METHOD_SUBDIV;
     if (!missing && subdivides && (key->kind != SCG_PATCH_BEZIER || key->eval == SCG_EVAL_LOOP))
         return sc_fail_key(err, text,
                            "%s subdivides the record's Bézier points, so it needs an unrolled "

@@ -52,8 +52,8 @@ typedef enum scg_eval_form {
 
 /* The method is the option's sc_method (splinecast_options.h): "newton",
  * "broyden", "bclip" (reserved), "subdiv", "hybrid". A key never holds
- * SC_METHOD_DEFAULT. subdiv and hybrid need an unrolled Bézier key (bez,
- * dc or bern); subdiv (and bclip) take the start "mid" only, since they
+ * SC_METHOD_DEFAULT. subdiv needs an unrolled Bézier key (bez, dc or
+ * bern); subdiv (and bclip) take the start "mid" only, since they
  * start from the whole sub-patch, so that no two keys name one program.
  * For subdiv, itN is the depth of the stack of parameter intervals; the
  * number of subdivision steps is SCG_SUBDIV_STEPS_PER_LEVEL times it

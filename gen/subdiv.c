@@ -74,36 +74,6 @@ static scg_value distance(scg_builder *b, scg_value x, scg_value y)
     return scg_length(b, scg_sub(b, x, y));
 }
 
-/* 1 when the ray (+x from the origin of the frame's xy plane) crosses
- * the edge from x to y (vec3 points, their xy), else 0. */
-static scg_value edge_crossing(scg_builder *b, scg_value x, scg_value y)
-{
-    scg_value zero = scg_const_f(b, 0.0f);
-    scg_value xx = scg_comp(b, x, 0), xy = scg_comp(b, x, 1);
-    scg_value yx = scg_comp(b, y, 0), yy = scg_comp(b, y, 1);
-    scg_value x_up = scg_lt(b, zero, xy);
-    scg_value y_up = scg_lt(b, zero, yy);
-    scg_value straddles = scg_or(b, scg_and(b, x_up, scg_not(b, y_up)),
-                                 scg_and(b, y_up, scg_not(b, x_up)));
-    scg_value slope = scg_div(b, scg_sub(b, yx, xx), scg_sub(b, yy, xy));
-    scg_value at = scg_sub(b, xx, scg_mul(b, xy, slope));
-    scg_value right = scg_lt(b, zero, at);
-    scg_value one = scg_const_i(b, 1);
-    return scg_select(b, scg_and(b, straddles, right), one, scg_const_i(b, 0));
-}
-
-/* True when the ray passes through the quadrilateral a b c d (in this
- * order around it), by the parity of its edge crossings. */
-static scg_value crosses_quad(scg_builder *b, scg_value a, scg_value bb, scg_value c, scg_value d)
-{
-    scg_value n = edge_crossing(b, a, bb);
-    n = scg_add(b, n, edge_crossing(b, bb, c));
-    n = scg_add(b, n, edge_crossing(b, c, d));
-    n = scg_add(b, n, edge_crossing(b, d, a));
-    scg_value once = scg_eq(b, n, scg_const_i(b, 1));
-    return scg_or(b, once, scg_eq(b, n, scg_const_i(b, 3)));
-}
-
 /* Pushes interval iv with (near, size) onto the stack. */
 static void push(scg_builder *b, scg_value stack, scg_value meta, scg_value sp_var, scg_value iv,
                  scg_value near_size)
@@ -116,8 +86,7 @@ static void push(scg_builder *b, scg_value stack, scg_value meta, scg_value sp_v
 
 /* Popped piece iv (its parent's box nearest at meta.x, of L1 size meta.y):
  * box test, leaf or split. */
-static void visit(scg_isect *c, scg_value iv, scg_value meta_v, scg_value vars[4], int depth,
-                  bool exact)
+static void visit(scg_isect *c, scg_value iv, scg_value meta_v, scg_value vars[4], int depth)
 {
     scg_builder *b = c->b;
     scg_value stack = vars[0], meta = vars[1], sp_var = vars[2], best_var = vars[3];
@@ -156,19 +125,11 @@ static void visit(scg_isect *c, scg_value iv, scg_value meta_v, scg_value vars[4
     scg_value half = scg_const_f(b, 0.5f);
     scg_value c00 = e[0], c10 = e[p], c01 = e[q * (p + 1)], c11 = e[n - 1];
     scg_if(b, leaf);
-    /* With `exact`, a small piece whose box holds the ray is a hit only
-     * when the ray crosses the quadrilateral of its corners: at a
-     * silhouette the box may hold a ray that passes the surface closer than
-     * the tolerance, where the reference sees a miss. A piece that stopped
-     * for another reason is taken as it is. */
-    scg_value crosses = exact ? crosses_quad(b, c00, c10, c11, c01) : scg_const_b(b, true);
-    scg_if(b, scg_or(b, crosses, scg_not(b, small)));
     scg_store(b, best_var, near);
     scg_value u_mid = scg_mul(b, scg_add(b, scg_comp(b, iv, 0), scg_comp(b, iv, 1)), half);
     scg_value v_mid = scg_mul(b, scg_add(b, scg_comp(b, iv, 2), scg_comp(b, iv, 3)), half);
     scg_store(b, c->uv_var, scg_vec2(b, u_mid, v_mid));
     scg_store(b, c->found_var, scg_const_b(b, true));
-    scg_endif(b);
     scg_else(b);
     /* The longer direction, by the lengths of the net's boundary edges;
      * the nearer half, by the depths of its corners. */
@@ -198,7 +159,12 @@ static void visit(scg_isect *c, scg_value iv, scg_value meta_v, scg_value vars[4
     scg_endif(b);
 }
 
-void scg_subdiv_search(scg_isect *c, int depth, int steps, scg_value wanted, bool exact)
+/* Subdivision of the hull's sub-patch domain with a stack of `depth`
+ * intervals and at most `steps` pieces popped, where `wanted` (bool; 0:
+ * always) holds: uv_var ends at the middle of the nearest leaf whose box
+ * the ray passes, found_var true when there is one; the steps add to
+ * iters_var. */
+static void search(scg_isect *c, int depth, int steps, scg_value wanted)
 {
     scg_builder *b = c->b;
     scg_value lo = c->dom_lo, hi = c->dom_hi;
@@ -235,7 +201,7 @@ void scg_subdiv_search(scg_isect *c, int depth, int steps, scg_value wanted, boo
     /* The parent's box bounds the piece's: behind the best leaf, skip it
      * without recomputing it. */
     scg_if(b, scg_lt(b, scg_comp(b, meta_v, 0), scg_load(b, best_var)));
-    visit(c, iv, meta_v, vars, depth, exact);
+    visit(c, iv, meta_v, vars, depth);
     scg_endif(b);
     scg_endloop(b);
 }
@@ -249,5 +215,5 @@ void scg_method_subdiv(scg_isect *c, scg_value uv0, scg_value behind)
     scg_name(b, NULL);
     int depth = c->key->max_iters;
     scg_value wanted = behind ? scg_not(b, behind) : 0;
-    scg_subdiv_search(c, depth, depth * SCG_SUBDIV_STEPS_PER_LEVEL, wanted, false);
+    search(c, depth, depth * SCG_SUBDIV_STEPS_PER_LEVEL, wanted);
 }

@@ -30,8 +30,10 @@ typedef enum sc_method {
                               implemented, so every call refuses it */
     SC_METHOD_SUBDIV,      /* object-space subdivision of the sub-patch
                               (Dammertz & Keller) with a stack of intervals */
-    SC_METHOD_HYBRID       /* Newton, and subdivision in the same hull where
-                              Newton does not converge inside it */
+    SC_METHOD_HYBRID       /* Newton, restarted from the middles of the
+                              sub-patch and its quarters in the same hull
+                              where its point is not a converged, kept
+                              crossing inside the sub-patch */
 } sc_method;
 
 /* Where Newton's method starts (keys: mid, cp, view). */
