@@ -203,9 +203,9 @@ TEST(key_scene_keys)
     sc_error err;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 3);
-    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
@@ -214,8 +214,8 @@ TEST(key_scene_keys)
     opts.generic_above = 12;
     CHECK_INT(sc_scene_keys(&scene, &opts, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 4);
-    CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-newton-cp-it8-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-newton-cp-it8-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-hybrid-cp-it8-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-hybrid-cp-it8-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_scene_free(&scene);
 }
@@ -270,7 +270,7 @@ TEST(key_scene_keys_undrawable_surfaces)
     sc_set_logger(NULL, NULL);
     CHECK_INT(status, SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez2x2-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez2x2-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     CHECK_INT(w.count, 2);
     CHECK_CONTAINS(w.text, "parts.obj: surface 1 (part1): degree 17×1 is above 16");
@@ -290,7 +290,7 @@ TEST(key_scene_keys_teapot)
     int count;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_scene_free(&scene);
 }

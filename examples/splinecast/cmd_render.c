@@ -30,7 +30,7 @@ static const char usage[] =
     "                         control-point parameters interpolated over the hull\n"
     "                         (default cpmap; view is not implemented)\n"
     "  --method newton|broyden|bclip|subdiv|hybrid   intersection method\n"
-    "                         (default newton; bclip is not implemented; with\n"
+    "                         (default hybrid; bclip is not implemented; with\n"
     "                         subdiv, --iters is the stack depth, default 24)\n"
     "  --view shade|uv|iters|normal|depth|hull\n"
     "                         what the PNG shows (default shade); hull: each\n"

@@ -212,7 +212,7 @@ typedef struct sc_keys_desc {
                                   early ray termination (its ertN as it is)
                                   and outputs the keys take where the fields
                                   above are zero (`gen --like`) */
-    sc_method method;          /* intersection method (newton), as
+    sc_method method;          /* intersection method (hybrid; like's), as
                                   sc_renderer_desc.method */
 } sc_keys_desc;
 
@@ -371,7 +371,7 @@ typedef struct sc_renderer_desc {
                                   for it and not shared with the context's
                                   cache, so that compile_ms measures
                                   compiling them (benchmarks) */
-    sc_method method;          /* intersection method (newton); bclip is
+    sc_method method;          /* intersection method (hybrid); bclip is
                                   refused (not implemented). With subdiv,
                                   max_iters is the depth of the subdivision
                                   stack (24) and start is ignored */

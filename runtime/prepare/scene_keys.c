@@ -57,8 +57,7 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->trim_degree = tdeg;
         key->trim_iters = opts->trim_iters > 0 ? opts->trim_iters : SCG_DEFAULT_TRIM_ITERS;
     }
-    if (opts->method != SC_METHOD_DEFAULT)
-        key->method = opts->method;
+    key->method = opts->method == SC_METHOD_DEFAULT ? SC_DEFAULT_METHOD : opts->method;
     if (key->method == SC_METHOD_SUBDIV)
         key->max_iters = SCG_DEFAULT_SUBDIV_DEPTH;
     if (opts->max_iters > 0)
