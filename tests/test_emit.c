@@ -402,7 +402,7 @@ TEST(emit_gen_command)
     CHECK_CONTAINS(errors, "bez3x3-nonsense");
     free(errors);
     snprintf(cmd, sizeof cmd,
-             "%s gen --key %s bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade -o "
+             "%s gen --key %s nurbs3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade -o "
              "%s/gen/bad",
              test_cli, bicubic, test_tmpdir());
     CHECK_INT(test_run(cmd, &out, &errors), 1);

@@ -315,7 +315,7 @@ TEST(install_api_keys_and_glsl)
     sc_free_glsl(&glsl);
     CHECK(glsl.fragment == NULL);
 
-    static const char bclip[] = "bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade";
+    static const char bclip[] = "nurbs3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade";
     CHECK_INT(sc_check_key(bclip, &err), SC_FAIL);
     CHECK_STR(err.key, bclip);
     CHECK_INT(sc_generate_glsl(&(sc_glsl_desc){.key = "bez3x3-nonsense"}, &glsl, &err),

@@ -135,6 +135,8 @@ TEST(key_method_combinations)
         {"bez3x3-poly-dc-trim0-subdiv-cp-it24-tol0.05-ert0-out.shade", "write 'mid'"},
         {"bezdyn-poly-loop-trim0-subdiv-mid-it24-tol0.05-ert0-out.shade", "unrolled Bézier"},
         {"nurbs3x3-poly-dc-trim0-subdiv-mid-it24-tol0.05-ert0-out.shade", "unrolled Bézier"},
+        {"bez3x3-poly-dc-trim0-bclip-cp-it32-tol0.05-ert0-out.shade", "write 'mid'"},
+        {"nurbs3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert0-out.shade", "unrolled Bézier"},
     };
     for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
         scg_key k;
@@ -149,6 +151,8 @@ TEST(key_method_combinations)
         "bez2x4-rat-bern-fast2i16-subdiv-mid-it8-tol0.05-ert2-out.shade",
         "bez3x3-poly-dc-trim0-broyden-cp-it6-tol0.05-ert1-out.shade.aov",
         "nurbsdyn-rat-loop-clip3i16-broyden-mid-it6-tol0.05-ert0-out.shade",
+        "bez3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert1-out.shade.aov",
+        "nurbs3x3-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
     };
     for (size_t i = 0; i < sizeof built / sizeof built[0]; i++) {
         scg_key k;
@@ -165,7 +169,6 @@ TEST(key_reserved_refused)
 {
     static const struct { const char *text, *says; } cases[] = {
         {"tri3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "triangular"},
-        {"bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade", "Bézier clipping (bclip)"},
         {"bez3x3-poly-dc-trim0-newton-view-it4-tol0.25-ert0-out.shade", "view-dependent"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

@@ -26,8 +26,8 @@ typedef enum sc_method {
     SC_METHOD_NEWTON,      /* Newton iteration on the ray's two planes */
     SC_METHOD_BROYDEN,     /* Broyden's method: the Jacobian of the first
                               evaluation, then rank-one updates */
-    SC_METHOD_BCLIP,       /* Bézier clipping: keys parse it, but it is not
-                              implemented, so every call refuses it */
+    SC_METHOD_BCLIP,       /* Bézier clipping of the sub-patch against the
+                              ray's two planes (Nishita et al.) */
     SC_METHOD_SUBDIV,      /* object-space subdivision of the sub-patch
                               (Dammertz & Keller) with a stack of intervals */
     SC_METHOD_HYBRID       /* Newton, restarted from the middles of the
