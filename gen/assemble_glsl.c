@@ -50,7 +50,7 @@ static const char *method_words(sc_method method)
     case SC_METHOD_BROYDEN: return "Broyden iteration";
     case SC_METHOD_BCLIP: return "Bezier clipping";
     case SC_METHOD_SUBDIV: return "object-space subdivision";
-    case SC_METHOD_HYBRID: return "Newton iteration, then object-space subdivision where it fails";
+    case SC_METHOD_HYBRID: return "Newton iteration, restarted across the sub-patch where it fails";
     }
     return "?";
 }

@@ -1,54 +1,201 @@
-/* hybrid.c — Newton first, a robust method where Newton fails, inside the
- * same hull. Newton (newton.c) runs its unrolled iterations from the key's
- * start; its answer is kept when its last step converged (the object-space
- * step below tol · SCG_STOP_FRACTION with a regular Jacobian: the residual
- * measured against the pixel footprint) at a point inside the iteration box
- * (the sub-patch domain plus its overlap). Everywhere else — no
- * convergence within the iterations, an iterate that left the box, a
- * (near-)singular Jacobian at a silhouette or a collapsed edge — the
- * object-space subdivision of subdiv.c searches the hull's sub-patch, and
- * its leaf decides. The iteration count adds both methods' steps.
+/* hybrid.c — Newton first, and where Newton fails, Newton again from
+ * starts that cover the hull's sub-patch, inside the same hull.
  *
- * Subdivision, not Bézier clipping, is the fallback because it is the one
- * built (bclip is not implemented); its stack depth is
- * SCG_DEFAULT_SUBDIV_DEPTH, as for the subdiv keys the renderer makes. */
+ * Newton (newton.c) runs from the key's start and may roam the record. Its
+ * point is kept when the last step converged (the object-space step below
+ * tol · SCG_STOP_FRACTION with a regular Jacobian: the residual measured
+ * against the pixel footprint), the point lies in the sub-patch domain plus
+ * its overlap, and the trim curves keep it. Everywhere else — no
+ * convergence, a (near-)singular Jacobian, a point on a neighbouring
+ * sub-patch (whose own, nearer crossing this hull would lose), a point the
+ * trim curves cut away — Newton starts again from the middle of the
+ * sub-patch, then from the middles of its quarters (and of its sixteenths
+ * where the sub-patch is large on screen), each run confined to its piece
+ * plus overlap, until one is kept. The iteration count adds the steps of
+ * every run.
+ *
+ * Shaped for a GPU that runs both sides of every branch under a mask and a
+ * loop for as long as any ray of a group needs it (llvmpipe): everything
+ * is one runtime loop whose passes take HYBRID_PASS_STEPS unrolled Newton
+ * steps each, the first passes being Newton's own run. A group whose rays
+ * all converge within one pass stops after it (cheaper than Newton's
+ * itN unrolled steps, which all run under the mask); a restart costs a
+ * group more passes only where one of its rays needs it. A subdivision
+ * search after Newton (subdiv.c) cost 1.6-1.7x Newton's frame on the
+ * teapot even where no ray entered it, and its leaves at the tolerance lay
+ * too deep for PRO20359-L1's close-ups within a step budget a frame can
+ * afford (docs/compiler.md, "Methods"). */
 #include "hybrid.h"
 #include "newton.h"
-#include "subdiv.h"
 
-/* Pieces the fallback may pop: two per level of its stack. Rays that miss
- * the surface near a silhouette also reach the fallback, and on a GPU that
- * runs a loop for as long as any ray of a group needs it (llvmpipe), their
- * search sets the cost: on the teapot at 1024², 4 per level cost 4.1× the
- * Newton frame, 2 per level 3.1×, and the 14 hits that needed the fallback
- * took at most 30 steps (docs/compiler.md). */
-#define HYBRID_STEPS (2 * SCG_DEFAULT_SUBDIV_DEPTH)
+/* Newton steps a pass (a run of itN steps takes ⌈itN/3⌉ passes), and
+ * restarts after Newton's own run: the sub-patch's middle and its four
+ * quarters'; on to the sixteenths (21) where the sub-patch spans more than
+ * HYBRID_LARGE_PIXELS; one at most after a crossing the trim curves cut
+ * away. Measured (docs/compiler.md, "Methods"): on the teapot at 1024²,
+ * passes of 2, 3 and 6 steps cost 1.08-1.12, 1.09-1.20 and 1.42x Newton's
+ * frame with 5 restarts; 21 restarts everywhere cost 1.4-1.7x, paid by
+ * the rays near silhouettes that miss and so run them all, and a
+ * threshold of 16, 32, 64, 128 or 256 pixels 1.57-1.69, 1.52-1.59,
+ * 1.21-1.23, 1.15-1.16 and 1.04-1.15x; 512 left a hole in PRO20359-L1's
+ * tail close-up that 256 closes. After a crossing cut away, 0 restarts
+ * left 0.18-0.76 % of PRO20359-L1's pixels failing, 1 none, and 5 cost
+ * its close-up 3.6x Newton's frame against 2.5x. */
+#define HYBRID_PASS_STEPS 3
+#define HYBRID_RESTARTS 5
+#define HYBRID_RESTARTS_LARGE 21
+#define HYBRID_LARGE_PIXELS 256.0f
+#define HYBRID_TRIMMED_RESTARTS 1
+
+/* The corners lo, hi of the piece of the sub-patch domain that restart r
+ * (int) starts in: r = 0 the whole domain, 1…4 its quarters, 5…20 its
+ * sixteenths, row by row. */
+static void restart_piece(scg_isect *c, scg_value r, scg_value *lo, scg_value *hi)
+{
+    scg_builder *b = c->b;
+    scg_value one = scg_const_i(b, 1);
+    scg_value five = scg_const_i(b, 5);
+    scg_value past_whole = scg_le(b, one, r);
+    scg_value past_quarters = scg_le(b, five, r);
+    scg_value whole = scg_const_f(b, 1.0f);
+    scg_value count = scg_select(b, past_whole, scg_const_f(b, 2.0f), whole);
+    count = scg_select(b, past_quarters, scg_const_f(b, 4.0f), count);
+    scg_value first = scg_select(b, past_whole, one, scg_const_i(b, 0));
+    first = scg_select(b, past_quarters, five, first);
+    scg_value i = scg_i2f(b, scg_sub(b, r, first));
+    scg_value row = scg_floor(b, scg_div(b, i, count));
+    scg_value col = scg_sub(b, i, scg_mul(b, row, count));
+    scg_value cell = scg_vec2(b, col, row);
+    scg_value size = scg_div(b, scg_sub(b, c->dom_hi, c->dom_lo), count);
+    *lo = scg_add(b, c->dom_lo, scg_mul(b, cell, size));
+    *hi = scg_add(b, *lo, size);
+}
+
+/* The restarts a ray may take: down to the quarters, or, for a Bézier
+ * sub-patch that spans more than HYBRID_LARGE_PIXELS on screen (its
+ * share of the box of the record's points, against the pixel footprint
+ * at the hull), down to the sixteenths. */
+static scg_value restart_count(scg_isect *c)
+{
+    scg_builder *b = c->b;
+    scg_value few = scg_const_i(b, HYBRID_RESTARTS);
+    if (c->key->kind != SCG_PATCH_BEZIER || c->key->eval == SCG_EVAL_LOOP)
+        return few;
+    scg_name(b, "extent");
+    int n = (c->p + 1) * (c->q + 1);
+    scg_value lo = 0, hi = 0;
+    for (int k = 0; k < n; k++) {
+        scg_value pt = scg_xyz(b, c->proj[k]);
+        if (c->key->rational)
+            pt = scg_div(b, pt, scg_comp(b, c->proj[k], 3));
+        lo = k ? scg_min(b, lo, pt) : pt;
+        hi = k ? scg_max(b, hi, pt) : pt;
+    }
+    scg_value box = scg_sub(b, hi, lo);
+    scg_value box_x = scg_comp(b, box, 0), box_y = scg_comp(b, box, 1);
+    scg_value box_xy = scg_max(b, box_x, box_y);
+    scg_value extent = scg_max(b, box_xy, scg_comp(b, box, 2));
+    scg_value dom = scg_sub(b, c->dom_hi, c->dom_lo);
+    scg_value dom_u = scg_comp(b, dom, 0), dom_v = scg_comp(b, dom, 1);
+    scg_value share = scg_max(b, dom_u, dom_v);
+    scg_value size = scg_mul(b, extent, share);
+    scg_value pixel = scg_mul(b, scg_uniform(b, SCG_UNI_FOOTPRINT), c->dir_len);
+    scg_value limit = scg_mul(b, pixel, scg_const_f(b, HYBRID_LARGE_PIXELS));
+    scg_value large = scg_lt(b, limit, size);
+    scg_name(b, NULL);
+    return scg_select(b, large, scg_const_i(b, HYBRID_RESTARTS_LARGE), few);
+}
+
+/* The next run: Newton from the middle of restart r's piece, confined to
+ * the piece plus overlap (Martin et al.) within the record's domain. */
+static void start_run(scg_isect *c, scg_value r, scg_value lo_var, scg_value hi_var)
+{
+    scg_builder *b = c->b;
+    scg_name(b, "piece");
+    scg_value p_lo, p_hi;
+    restart_piece(c, r, &p_lo, &p_hi);
+    scg_value overlap = scg_const_f(b, SCG_DOMAIN_OVERLAP);
+    scg_value margin = scg_mul(b, scg_sub(b, p_hi, p_lo), overlap);
+    scg_value wide_lo = scg_sub(b, p_lo, margin);
+    scg_store(b, lo_var, scg_max(b, wide_lo, c->rec_lo));
+    scg_value wide_hi = scg_add(b, p_hi, margin);
+    scg_store(b, hi_var, scg_min(b, wide_hi, c->rec_hi));
+    scg_value corners = scg_add(b, p_lo, p_hi);
+    scg_value middle = scg_mul(b, corners, scg_const_f(b, 0.5f));
+    scg_store(b, c->uv_var, middle);
+    scg_store(b, c->done_var, scg_const_b(b, false));
+    scg_store(b, c->converged_var, scg_const_b(b, false));
+    scg_name(b, NULL);
+}
 
 void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
 {
     scg_builder *b = c->b;
+    int steps = HYBRID_PASS_STEPS < c->key->max_iters ? HYBRID_PASS_STEPS : c->key->max_iters;
+    int passes_per_run = (c->key->max_iters + steps - 1) / steps;
     scg_isect_vars(c, uv0, behind);
     scg_name(b, "converged");
     c->converged_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, false));
     scg_name(b, "found");
     c->found_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, false));
+    /* The first run may roam the whole record: converging back into the
+     * sub-patch after a step outside it still counts. */
+    scg_name(b, "run_lo");
+    scg_value lo_var = scg_var(b, SCG_VEC2, 0, c->rec_lo);
+    scg_name(b, "run_hi");
+    scg_value hi_var = scg_var(b, SCG_VEC2, 0, c->rec_hi);
+    scg_name(b, "run_pass");
+    scg_value pass_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
+    scg_name(b, "restart");
+    scg_value restart_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
     scg_name(b, NULL);
-    /* Newton may roam the whole record: converging into a neighbouring
-     * sub-patch finds that neighbour's hit (its hull would find the same,
-     * and the depth test keeps the nearest), where stopping at the
-     * sub-patch's box would send the ray to the fallback for nothing. */
-    c->lo = c->rec_lo;
-    c->hi = c->rec_hi;
-    scg_isect_repeat(c, behind, c->key->max_iters, scg_newton_step, NULL);
-
-    scg_name(b, "newton_hit");
+    scg_value sub_lo = c->lo, sub_hi = c->hi;
+    scg_name(b, "restarts");
+    scg_value restarts_var = scg_var(b, SCG_INT, 0, restart_count(c));
+    scg_name(b, NULL);
+    scg_loop(b, scg_const_i(b, passes_per_run * (1 + HYBRID_RESTARTS_LARGE)));
+    c->lo = scg_load(b, lo_var);
+    c->hi = scg_load(b, hi_var);
+    scg_isect_repeat(c, behind, steps, scg_newton_step, NULL);
+    scg_name(b, "kept");
     scg_value uv = scg_load(b, c->uv_var);
-    scg_value in_box = scg_isect_inside(b, uv, c->rec_lo, c->rec_hi);
-    scg_value newton_hit = scg_and(b, scg_load(b, c->converged_var), in_box);
-    scg_store(b, c->found_var, newton_hit);
-    scg_value fallback = scg_not(b, newton_hit);
+    scg_value converged = scg_load(b, c->converged_var);
+    scg_value in_sub = scg_isect_inside(b, uv, sub_lo, sub_hi);
+    scg_value accepted = scg_and(b, converged, in_sub);
+    scg_value kept = scg_isect_kept(c, accepted, uv);
+    /* A crossing the trim curves cut away leaves one restart (from the
+     * sub-patch's middle) at most: a second, kept crossing in the same
+     * sub-patch is rare, and rays through the holes of trimmed models are
+     * many. */
+    scg_value cut_away = scg_and(b, accepted, scg_not(b, kept));
+    scg_value allowed = scg_load(b, restarts_var);
+    scg_value cap = scg_const_i(b, HYBRID_TRIMMED_RESTARTS);
+    scg_value lower = scg_and(b, cut_away, scg_lt(b, cap, allowed));
+    scg_store(b, restarts_var, scg_select(b, lower, cap, allowed));
+    accepted = scg_and(b, accepted, kept);
+    scg_store(b, c->found_var, accepted);
+    /* A run is over when Newton stopped (converged, singular, left its
+     * box) or spent its itN steps; then the next piece, if any. */
+    scg_name(b, "run_over");
+    scg_value passes_done = scg_load(b, pass_var);
+    scg_value pass = scg_add(b, passes_done, scg_const_i(b, 1));
+    scg_value out_of_steps = scg_eq(b, pass, scg_const_i(b, passes_per_run));
+    scg_value run_over = scg_or(b, scg_load(b, c->done_var), out_of_steps);
+    scg_value restart = scg_load(b, restart_var);
+    scg_value no_more = scg_le(b, scg_load(b, restarts_var), restart);
+    scg_value stop = scg_or(b, accepted, scg_and(b, run_over, no_more));
     if (behind)
-        fallback = scg_and(b, fallback, scg_not(b, behind));
+        stop = scg_or(b, stop, behind);
     scg_name(b, NULL);
-    scg_subdiv_search(c, SCG_DEFAULT_SUBDIV_DEPTH, HYBRID_STEPS, fallback, true);
+    scg_if(b, stop);
+    scg_break(b);
+    scg_endif(b);
+    scg_store(b, pass_var, pass);
+    scg_if(b, run_over);
+    start_run(c, restart, lo_var, hi_var);
+    scg_store(b, pass_var, scg_const_i(b, 0));
+    scg_store(b, restart_var, scg_add(b, restart, scg_const_i(b, 1)));
+    scg_endif(b);
+    scg_endloop(b);
+    c->trimmed_by_method = true;
 }

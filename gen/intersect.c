@@ -484,10 +484,23 @@ static scg_value distance_to_hit(scg_isect *c, const scg_value e[3], scg_value m
     return scg_add(b, along_u, along_v);
 }
 
-/* Trimming runs only for a hit, on the record's trim block; a record the
- * runtime gave no block (0) keeps everything. `r_lo`, `r_extent` map the
- * Bézier record's local (u, v) to the surface's (0 for NURBS). */
-static scg_value trimmed_hit(scg_isect *c, scg_value hit, scg_value uv, scg_value r_lo,
+/* The map from a Bézier record's local (u, v) to the surface's: origin
+ * and extent of its rectangle (both 0 for NURBS, whose (u, v) is the
+ * surface's already). */
+static void record_map(scg_isect *c, scg_value *r_lo, scg_value *r_extent)
+{
+    *r_lo = *r_extent = 0;
+    if (c->key->kind != SCG_PATCH_BEZIER)
+        return;
+    *r_lo = rect_corner(c->b, c->rect, 0);
+    scg_value r_hi = rect_corner(c->b, c->rect, 1);
+    *r_extent = scg_sub(c->b, r_hi, *r_lo);
+}
+
+/* The variable (bool) that tells whether uv is kept by the record's trim
+ * curves, classified only where `want` holds; r_lo, r_extent as from
+ * record_map. */
+static scg_value kept_var_at(scg_isect *c, scg_value want, scg_value uv, scg_value r_lo,
                              scg_value r_extent)
 {
     scg_builder *b = c->b;
@@ -496,14 +509,21 @@ static scg_value trimmed_hit(scg_isect *c, scg_value hit, scg_value uv, scg_valu
     scg_name(b, "kept");
     scg_value kept_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, true));
     scg_name(b, NULL);
-    scg_if(b, scg_and(b, hit, scg_lt(b, scg_const_i(b, 0), block)));
+    /* A record the runtime gave no trim block (0) keeps everything. */
+    scg_if(b, scg_and(b, want, scg_lt(b, scg_const_i(b, 0), block)));
     scg_value uv_trim = scg_trim_normalise(b, block, r_lo, r_extent, uv);
     scg_store(b, kept_var, scg_trim_kept(b, c->key, block, uv_trim, 0));
     scg_endif(b);
-    scg_name(b, "hit");
-    hit = scg_and(b, hit, scg_load(b, kept_var));
-    scg_name(b, NULL);
-    return hit;
+    return kept_var;
+}
+
+scg_value scg_isect_kept(scg_isect *c, scg_value want, scg_value uv)
+{
+    if (c->key->trim == SC_TRIM_NONE)
+        return scg_const_b(c->b, true);
+    scg_value r_lo, r_extent;
+    record_map(c, &r_lo, &r_extent);
+    return scg_load(c->b, kept_var_at(c, want, uv, r_lo, r_extent));
 }
 
 void scg_build_intersection(scg_builder *b, const scg_key *key, scg_method_fn method)
@@ -573,16 +593,19 @@ void scg_build_intersection(scg_builder *b, const scg_key *key, scg_method_fn me
     scg_value facing_eye = scg_neg(b, c->axis);
     normal = scg_select(b, regular, unit_normal, facing_eye);
     scg_name(b, "uv_surface");
-    scg_value uv_out = uv, r_lo = 0, r_extent = 0;
-    if (key->kind == SCG_PATCH_BEZIER) {
-        r_lo = rect_corner(b, c->rect, 0);
-        scg_value r_hi = rect_corner(b, c->rect, 1);
-        r_extent = scg_sub(b, r_hi, r_lo);
+    scg_value uv_out = uv, r_lo, r_extent;
+    record_map(c, &r_lo, &r_extent);
+    if (r_lo)
         uv_out = scg_add(b, r_lo, scg_mul(b, uv, r_extent));
-    }
     scg_name(b, NULL);
-    if (key->trim != SC_TRIM_NONE)
-        hit = trimmed_hit(c, hit, uv, r_lo, r_extent);
+    /* Trimming runs only for a hit, unless the method has trimmed its
+     * candidates itself (hybrid.c). */
+    if (key->trim != SC_TRIM_NONE && !c->trimmed_by_method) {
+        scg_value kept_var = kept_var_at(c, hit, uv, r_lo, r_extent);
+        scg_name(b, "hit");
+        hit = scg_and(b, hit, scg_load(b, kept_var));
+        scg_name(b, NULL);
+    }
     scg_output(b, SCG_OUT_HIT, hit);
     scg_output(b, SCG_OUT_UV, uv_out);
     scg_output(b, SCG_OUT_T, t);

@@ -32,6 +32,10 @@ typedef struct scg_isect {
      * it instead of the distance to the hit, which needs a regular
      * Jacobian. */
     scg_value converged_var, found_var;
+    /* Set by a method whose found_var already excludes points the trim
+     * curves cut away (scg_isect_kept), so that the verdict does not test
+     * them again. */
+    bool trimmed_by_method;
     scg_value pts[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];  /* Bézier: fetched */
     scg_value proj[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)]; /* Bézier: projected */
 } scg_isect;
@@ -72,6 +76,10 @@ scg_value scg_isect_singular(scg_isect *c, scg_value det, scg_value ju, scg_valu
  * when uv and next both lie outside the box. Returns done. */
 scg_value scg_isect_take_step(scg_isect *c, scg_value uv, scg_value next, scg_value singular,
                               scg_value converged);
+/* True (bool) when uv, a (u, v) of the record, is kept by the record's
+ * trim curves; the test runs only where `want` (bool) holds, and is the
+ * constant true for untrimmed keys. */
+scg_value scg_isect_kept(scg_isect *c, scg_value want, scg_value uv);
 /* The variables uv (from uv0), iters (0) and done (`behind`, or false). */
 void scg_isect_vars(scg_isect *c, scg_value uv0, scg_value behind);
 /* `count` calls of step(c, user): unrolled, each after the first guarded by

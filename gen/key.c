@@ -340,22 +340,21 @@ int scg_key_check(const scg_key *key, sc_error *err)
     if (!tri && key->start == SC_START_SECURE)
         return sc_fail_key(err, text, "key %s: the secure starts (secure) are for "
                            "triangular patches (tri) only", text);
-    if (key->method == SC_METHOD_BCLIP)
-        missing = "Bézier clipping (bclip) is";
-    else if (key->start == SC_START_VIEW)
+    if (key->start == SC_START_VIEW)
         missing = "view-dependent initial values (view) are";
     else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
-    bool subdivides = key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_HYBRID;
+    bool subdivides = key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_BCLIP;
     if (!missing && subdivides && (key->kind != SCG_PATCH_BEZIER || key->eval == SCG_EVAL_LOOP))
         return sc_fail_key(err, text,
-                           "%s subdivides the record's Bézier points, so it needs an unrolled "
-                           "Bézier key (bez…, dc or bern)",
+                           "%s cuts the record's Bézier points into pieces, so it needs an "
+                           "unrolled Bézier key (bez…, dc or bern)",
                            method_names[key->method]);
-    if (!missing && key->method == SC_METHOD_SUBDIV && key->start != SC_START_MID)
+    if (!missing && subdivides && key->start != SC_START_MID)
         return sc_fail_key(err, text,
-                           "subdiv starts from the whole sub-patch and takes no start value: "
-                           "write 'mid' for the start field");
+                           "%s starts from the whole sub-patch and takes no start value: "
+                           "write 'mid' for the start field",
+                           method_names[key->method]);
     if (missing)
         return sc_fail_key(err, text, "%s not implemented yet", missing);
     return SC_OK;

@@ -8,9 +8,9 @@
  *
  * Triangular patches have one total degree: tri4-poly-dc-trim0-newton-
  * secure-…. Full grammar and the meaning of every value:
- * docs/variant-key.md. Values that later work will implement (Broyden,
- * Bézier clipping, subdivision, hybrid, view-dependent starts) parse, so
- * that the form is stable, but scg_key_check refuses them. */
+ * docs/variant-key.md. Values that later work will implement
+ * (view-dependent starts) parse, so that the form is stable, but
+ * scg_key_check refuses them. */
 #ifndef SCG_KEY_H
 #define SCG_KEY_H
 
@@ -54,15 +54,17 @@ typedef enum scg_eval_form {
  * SC_TRIM_DEFAULT. */
 
 /* The method is the option's sc_method (splinecast_options.h): "newton",
- * "broyden", "bclip" (reserved), "subdiv", "hybrid". A key never holds
- * SC_METHOD_DEFAULT. subdiv and hybrid need an unrolled Bézier key (bez,
- * dc or bern); subdiv (and bclip) take the start "mid" only, since they
- * start from the whole sub-patch, so that no two keys name one program.
- * For subdiv, itN is the depth of the stack of parameter intervals; the
- * number of subdivision steps is SCG_SUBDIV_STEPS_PER_LEVEL times it
- * (docs/variant-key.md). */
+ * "broyden", "bclip", "subdiv", "hybrid". A key never holds
+ * SC_METHOD_DEFAULT. subdiv and bclip need an unrolled Bézier key (bez,
+ * dc or bern) and take the start "mid" only, since they start from the
+ * whole sub-patch, so that no two keys name one program. For subdiv, itN
+ * is the depth of the stack of parameter intervals; the number of
+ * subdivision steps is SCG_SUBDIV_STEPS_PER_LEVEL times it; for bclip,
+ * itN is the number of clipping steps, SCG_DEFAULT_BCLIP_STEPS where the
+ * renderer chooses (docs/variant-key.md). */
 #define SCG_SUBDIV_STEPS_PER_LEVEL 8
 #define SCG_DEFAULT_SUBDIV_DEPTH 24
+#define SCG_DEFAULT_BCLIP_STEPS 32
 
 /* The start is the option's sc_start: SC_START_MID "mid" (centre of the
  * sub-patch domain), SC_START_CPMAP "cp" (interpolated hull-vertex

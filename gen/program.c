@@ -1,6 +1,7 @@
 /* program.c — from a key to an optimised program: the metaprogram the key
  * names, validation, then the pass list (optimize.c) with a hook after
  * every stage (--dump-ir). */
+#include "bclip.h"
 #include "broyden.h"
 #include "hybrid.h"
 #include "newton.h"
@@ -11,6 +12,7 @@ static scg_method_fn method_fn(const scg_key *key)
 {
     switch (key->method) {
     case SC_METHOD_BROYDEN: return scg_method_broyden;
+    case SC_METHOD_BCLIP: return scg_method_bclip;
     case SC_METHOD_SUBDIV: return scg_method_subdiv;
     case SC_METHOD_HYBRID: return scg_method_hybrid;
     default: return scg_method_newton;

@@ -44,9 +44,7 @@ static void restrict_curve(scg_builder *b, const scg_value *in, int p, scg_value
     }
 }
 
-/* The record's points restricted to the interval iv = (u0, u1, v0, v1),
- * Euclidean, in the ray's frame (vec3: F1, F2, depth). */
-static void piece_points(scg_isect *c, scg_value iv, scg_value *e)
+void scg_piece_points(scg_isect *c, scg_value iv, scg_value *e, scg_value *homogeneous)
 {
     scg_builder *b = c->b;
     int p = c->p, q = c->q, n = (p + 1) * (q + 1);
@@ -63,6 +61,8 @@ static void piece_points(scg_isect *c, scg_value iv, scg_value *e)
         for (int j = 0; j <= q; j++)
             e[j * (p + 1) + i] = cut[j];
     }
+    for (int k = 0; homogeneous && k < n; k++)
+        homogeneous[k] = e[k];
     if (c->key->rational)
         for (int k = 0; k < n; k++)
             e[k] = scg_div(b, scg_xyz(b, e[k]), scg_comp(b, e[k], 3));
@@ -74,101 +74,84 @@ static scg_value distance(scg_builder *b, scg_value x, scg_value y)
     return scg_length(b, scg_sub(b, x, y));
 }
 
-/* 1 when the ray (+x from the origin of the frame's xy plane) crosses
- * the edge from x to y (vec3 points, their xy), else 0. */
-static scg_value edge_crossing(scg_builder *b, scg_value x, scg_value y)
+void scg_piece_push(scg_builder *b, const scg_pieces *s, scg_value iv, scg_value meta)
 {
-    scg_value zero = scg_const_f(b, 0.0f);
-    scg_value xx = scg_comp(b, x, 0), xy = scg_comp(b, x, 1);
-    scg_value yx = scg_comp(b, y, 0), yy = scg_comp(b, y, 1);
-    scg_value x_up = scg_lt(b, zero, xy);
-    scg_value y_up = scg_lt(b, zero, yy);
-    scg_value straddles = scg_or(b, scg_and(b, x_up, scg_not(b, y_up)),
-                                 scg_and(b, y_up, scg_not(b, x_up)));
-    scg_value slope = scg_div(b, scg_sub(b, yx, xx), scg_sub(b, yy, xy));
-    scg_value at = scg_sub(b, xx, scg_mul(b, xy, slope));
-    scg_value right = scg_lt(b, zero, at);
-    scg_value one = scg_const_i(b, 1);
-    return scg_select(b, scg_and(b, straddles, right), one, scg_const_i(b, 0));
+    scg_value sp = scg_load(b, s->sp);
+    scg_store_at(b, s->stack, sp, iv);
+    scg_store_at(b, s->meta, sp, meta);
+    scg_store(b, s->sp, scg_add(b, sp, scg_const_i(b, 1)));
 }
 
-/* True when the ray passes through the quadrilateral a b c d (in this
- * order around it), by the parity of its edge crossings. */
-static scg_value crosses_quad(scg_builder *b, scg_value a, scg_value bb, scg_value c, scg_value d)
-{
-    scg_value n = edge_crossing(b, a, bb);
-    n = scg_add(b, n, edge_crossing(b, bb, c));
-    n = scg_add(b, n, edge_crossing(b, c, d));
-    n = scg_add(b, n, edge_crossing(b, d, a));
-    scg_value once = scg_eq(b, n, scg_const_i(b, 1));
-    return scg_or(b, once, scg_eq(b, n, scg_const_i(b, 3)));
-}
-
-/* Pushes interval iv with (near, size) onto the stack. */
-static void push(scg_builder *b, scg_value stack, scg_value meta, scg_value sp_var, scg_value iv,
-                 scg_value near_size)
-{
-    scg_value sp = scg_load(b, sp_var);
-    scg_store_at(b, stack, sp, iv);
-    scg_store_at(b, meta, sp, near_size);
-    scg_store(b, sp_var, scg_add(b, sp, scg_const_i(b, 1)));
-}
-
-/* Popped piece iv (its parent's box nearest at meta.x, of L1 size meta.y):
- * box test, leaf or split. */
-static void visit(scg_isect *c, scg_value iv, scg_value meta_v, scg_value vars[4], int depth,
-                  bool exact)
+scg_value scg_piece_box(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value *e,
+                        scg_value *homogeneous, scg_value *near, scg_value *size)
 {
     scg_builder *b = c->b;
-    scg_value stack = vars[0], meta = vars[1], sp_var = vars[2], best_var = vars[3];
-    scg_value e[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];
-    int p = c->p, q = c->q, n = (p + 1) * (q + 1);
-    piece_points(c, iv, e);
+    int n = (c->p + 1) * (c->q + 1);
+    scg_piece_points(c, iv, e, homogeneous);
     scg_name(b, "box");
     scg_value lo = e[0], hi = e[0];
     for (int k = 1; k < n; k++) {
         lo = scg_min(b, lo, e[k]);
         hi = scg_max(b, hi, e[k]);
     }
-    scg_value lo_x = scg_comp(b, lo, 0), lo_y = scg_comp(b, lo, 1), near = scg_comp(b, lo, 2);
+    scg_value lo_x = scg_comp(b, lo, 0), lo_y = scg_comp(b, lo, 1);
+    *near = scg_comp(b, lo, 2);
     scg_value hi_x = scg_comp(b, hi, 0), hi_y = scg_comp(b, hi, 1);
-    scg_value x_in = scg_and(b, scg_le(b, lo_x, c->zero), scg_le(b, c->zero, hi_x));
-    scg_value y_in = scg_and(b, scg_le(b, lo_y, c->zero), scg_le(b, c->zero, hi_y));
-    scg_value best = scg_load(b, best_var);
-    scg_value nearer = scg_lt(b, near, best);
-    scg_value holds = scg_and(b, scg_and(b, x_in, y_in), nearer);
-    scg_name(b, NULL);
-    scg_if(b, holds);
-    scg_value iters = scg_load(b, c->iters_var);
-    scg_store(b, c->iters_var, scg_add(b, iters, scg_const_i(b, 1)));
+    scg_value x_above = scg_le(b, lo_x, c->zero);
+    scg_value x_in = scg_and(b, x_above, scg_le(b, c->zero, hi_x));
+    scg_value y_above = scg_le(b, lo_y, c->zero);
+    scg_value y_in = scg_and(b, y_above, scg_le(b, c->zero, hi_y));
+    scg_value best = scg_load(b, s->best);
+    scg_value nearer = scg_lt(b, *near, best);
+    scg_value on_ray = scg_and(b, x_in, y_in);
+    scg_value holds = scg_and(b, on_ray, nearer);
     scg_name(b, "size");
     scg_value extent = scg_sub(b, hi, lo);
     scg_value ex = scg_comp(b, extent, 0), ey = scg_comp(b, extent, 1);
     scg_value ez = scg_comp(b, extent, 2);
-    scg_value size = scg_add(b, scg_add(b, ex, ey), ez);
+    *size = scg_add(b, scg_add(b, ex, ey), ez);
+    scg_name(b, NULL);
+    return holds;
+}
+
+void scg_piece_hit(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value near)
+{
+    scg_builder *b = c->b;
+    scg_store(b, s->best, near);
+    scg_value half = scg_const_f(b, 0.5f);
+    scg_value u0 = scg_comp(b, iv, 0), v0 = scg_comp(b, iv, 2);
+    scg_value u_ends = scg_add(b, u0, scg_comp(b, iv, 1));
+    scg_value u_mid = scg_mul(b, u_ends, half);
+    scg_value v_ends = scg_add(b, v0, scg_comp(b, iv, 3));
+    scg_value v_mid = scg_mul(b, v_ends, half);
+    scg_store(b, c->uv_var, scg_vec2(b, u_mid, v_mid));
+    scg_store(b, c->found_var, scg_const_b(b, true));
+}
+
+/* Popped piece iv (its parent's box nearest at meta.x, of L1 size meta.y):
+ * box test, leaf or split. */
+static void visit(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value meta_v)
+{
+    scg_builder *b = c->b;
+    scg_value e[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];
+    int p = c->p, q = c->q, n = (p + 1) * (q + 1);
+    scg_value near, size;
+    scg_value holds = scg_piece_box(c, s, iv, e, NULL, &near, &size);
+    scg_if(b, holds);
+    scg_value iters = scg_load(b, c->iters_var);
+    scg_store(b, c->iters_var, scg_add(b, iters, scg_const_i(b, 1)));
+    scg_name(b, "leaf");
     scg_value small = scg_lt(b, size, c->tol);
     scg_value stuck = scg_le(b, scg_comp(b, meta_v, 1), size);
     /* Two more entries must fit; a full stack ends the descent here. */
-    scg_value sp = scg_load(b, sp_var);
-    scg_value full = scg_lt(b, scg_const_i(b, depth - 2), sp);
+    scg_value sp = scg_load(b, s->sp);
+    scg_value full = scg_lt(b, scg_const_i(b, s->depth - 2), sp);
     scg_value leaf = scg_or(b, scg_or(b, small, stuck), full);
     scg_name(b, NULL);
     scg_value half = scg_const_f(b, 0.5f);
     scg_value c00 = e[0], c10 = e[p], c01 = e[q * (p + 1)], c11 = e[n - 1];
     scg_if(b, leaf);
-    /* With `exact`, a small piece whose box holds the ray is a hit only
-     * when the ray crosses the quadrilateral of its corners: at a
-     * silhouette the box may hold a ray that passes the surface closer than
-     * the tolerance, where the reference sees a miss. A piece that stopped
-     * for another reason is taken as it is. */
-    scg_value crosses = exact ? crosses_quad(b, c00, c10, c11, c01) : scg_const_b(b, true);
-    scg_if(b, scg_or(b, crosses, scg_not(b, small)));
-    scg_store(b, best_var, near);
-    scg_value u_mid = scg_mul(b, scg_add(b, scg_comp(b, iv, 0), scg_comp(b, iv, 1)), half);
-    scg_value v_mid = scg_mul(b, scg_add(b, scg_comp(b, iv, 2), scg_comp(b, iv, 3)), half);
-    scg_store(b, c->uv_var, scg_vec2(b, u_mid, v_mid));
-    scg_store(b, c->found_var, scg_const_b(b, true));
-    scg_endif(b);
+    scg_piece_hit(c, s, iv, near);
     scg_else(b);
     /* The longer direction, by the lengths of the net's boundary edges;
      * the nearer half, by the depths of its corners. */
@@ -192,62 +175,68 @@ static void visit(scg_isect *c, scg_value iv, scg_value meta_v, scg_value vars[4
     scg_value near_size = scg_vec2(b, near, size);
     scg_name(b, NULL);
     /* The nearer half goes on top, so it is searched first. */
-    push(b, stack, meta, sp_var, scg_select(b, low_first, high, low), near_size);
-    push(b, stack, meta, sp_var, scg_select(b, low_first, low, high), near_size);
+    scg_piece_push(b, s, scg_select(b, low_first, high, low), near_size);
+    scg_piece_push(b, s, scg_select(b, low_first, low, high), near_size);
     scg_endif(b);
     scg_endif(b);
 }
 
-void scg_subdiv_search(scg_isect *c, int depth, int steps, scg_value wanted, bool exact)
+void scg_piece_search(scg_isect *c, scg_value lo, scg_value hi, int depth, int steps,
+                      scg_value wanted, scg_piece_visit on_piece)
 {
     scg_builder *b = c->b;
-    scg_value lo = c->dom_lo, hi = c->dom_hi;
     scg_value lo_u = scg_comp(b, lo, 0), hi_u = scg_comp(b, hi, 0);
     scg_value lo_v = scg_comp(b, lo, 1), hi_v = scg_comp(b, hi, 1);
     scg_value root = scg_vec4(b, lo_u, hi_u, lo_v, hi_v);
+    scg_pieces s = {.depth = depth};
     scg_name(b, "stack");
-    scg_value stack = scg_var(b, SCG_VEC4, depth, 0);
-    scg_value meta = scg_var(b, SCG_VEC2, depth, 0);
-    scg_value sp_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
+    s.stack = scg_var(b, SCG_VEC4, depth, 0);
+    s.meta = scg_var(b, SCG_VEC2, depth, 0);
+    s.sp = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
     scg_name(b, "best");
-    scg_value best_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, HUGE_DEPTH));
+    s.best = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, HUGE_DEPTH));
     scg_name(b, NULL);
     scg_value far = scg_const_f(b, HUGE_DEPTH);
-    push(b, stack, meta, sp_var, root, scg_vec2(b, scg_neg(b, far), far));
+    scg_piece_push(b, &s, root, scg_vec2(b, scg_neg(b, far), far));
     /* A ray that needs no search starts with an empty stack rather than
      * inside an `if`: the loop's first test then ends it, where an `if`
      * would still cost a pass of the loop on a GPU that runs both sides
      * of a branch under a mask (llvmpipe). */
     if (wanted)
-        scg_store(b, sp_var, scg_select(b, wanted, scg_const_i(b, 1), scg_const_i(b, 0)));
-    scg_value vars[4] = {stack, meta, sp_var, best_var};
+        scg_store(b, s.sp, scg_select(b, wanted, scg_const_i(b, 1), scg_const_i(b, 0)));
     scg_loop(b, scg_const_i(b, steps));
-    scg_value sp = scg_load(b, sp_var);
+    scg_value sp = scg_load(b, s.sp);
     scg_if(b, scg_le(b, sp, scg_const_i(b, 0)));
     scg_break(b);
     scg_endif(b);
     scg_value top = scg_sub(b, sp, scg_const_i(b, 1));
-    scg_store(b, sp_var, top);
+    scg_store(b, s.sp, top);
     scg_name(b, "piece");
-    scg_value iv = scg_load_at(b, stack, top);
-    scg_value meta_v = scg_load_at(b, meta, top);
+    scg_value iv = scg_load_at(b, s.stack, top);
+    scg_value meta_v = scg_load_at(b, s.meta, top);
     scg_name(b, NULL);
     /* The parent's box bounds the piece's: behind the best leaf, skip it
      * without recomputing it. */
-    scg_if(b, scg_lt(b, scg_comp(b, meta_v, 0), scg_load(b, best_var)));
-    visit(c, iv, meta_v, vars, depth, exact);
+    scg_if(b, scg_lt(b, scg_comp(b, meta_v, 0), scg_load(b, s.best)));
+    on_piece(c, &s, iv, meta_v);
     scg_endif(b);
     scg_endloop(b);
 }
 
-void scg_method_subdiv(scg_isect *c, scg_value uv0, scg_value behind)
+void scg_piece_method(scg_isect *c, scg_value uv0, scg_value behind, int depth, int steps,
+                      scg_piece_visit on_piece)
 {
     scg_builder *b = c->b;
     scg_isect_vars(c, uv0, behind);
     scg_name(b, "found");
     c->found_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, false));
     scg_name(b, NULL);
-    int depth = c->key->max_iters;
     scg_value wanted = behind ? scg_not(b, behind) : 0;
-    scg_subdiv_search(c, depth, depth * SCG_SUBDIV_STEPS_PER_LEVEL, wanted, false);
+    scg_piece_search(c, c->dom_lo, c->dom_hi, depth, steps, wanted, on_piece);
+}
+
+void scg_method_subdiv(scg_isect *c, scg_value uv0, scg_value behind)
+{
+    int depth = c->key->max_iters;
+    scg_piece_method(c, uv0, behind, depth, depth * SCG_SUBDIV_STEPS_PER_LEVEL, visit);
 }

@@ -9,14 +9,45 @@
  * key->max_iters intervals (the key's start is `mid` and unused). */
 void scg_method_subdiv(scg_isect *c, scg_value uv0, scg_value behind);
 
-/* Subdivision of the hull's sub-patch domain with a stack of `depth`
- * intervals and at most `steps` pieces popped, where `wanted` (bool; 0:
- * always) holds: sets uv_var to the middle of the nearest leaf whose box the ray
- * passes, found_var (the caller's, false before) to true when there is
- * one, and adds the
- * subdivision steps to iters_var. With `exact`, a leaf is a hit only when
- * the ray crosses the quadrilateral of its corners (no hit at a silhouette
- * that the ray passes within the tolerance). Used by hybrid.c as its fallback. */
-void scg_subdiv_search(scg_isect *c, int depth, int steps, scg_value wanted, bool exact);
+/* ---- pieces of the record's patch: the search shared with bclip.c ---- */
+
+/* The state of a search: a stack of `depth` parameter intervals (vec4
+ * array) with, for each, its parent's box (nearest depth, L1 size; vec2
+ * array), the stack's size (int variable) and the depth of the nearest
+ * hit so far (float variable). */
+typedef struct scg_pieces {
+    scg_value stack, meta, sp, best;
+    int depth;
+} scg_pieces;
+
+/* Writes what to do with a popped interval iv and its meta (vec2). */
+typedef void (*scg_piece_visit)(scg_isect *c, const scg_pieces *s, scg_value iv,
+                                scg_value meta);
+
+/* A runtime loop of at most `steps` pops from a stack of `depth`,
+ * starting with the domain [lo, hi] (vec2 corners) where `wanted` (bool;
+ * 0: always) holds; a piece whose parent's box lies behind the nearest hit
+ * is skipped, every other one goes to `on_piece`. */
+void scg_piece_search(scg_isect *c, scg_value lo, scg_value hi, int depth, int steps,
+                      scg_value wanted, scg_piece_visit on_piece);
+/* A whole method on that search: the variables of the skeleton, found_var,
+ * and the search of the hull's sub-patch (none for a ray early ray
+ * termination stopped). */
+void scg_piece_method(scg_isect *c, scg_value uv0, scg_value behind, int depth, int steps,
+                      scg_piece_visit on_piece);
+/* The record's points restricted to the interval iv = (u0, u1, v0, v1)
+ * (vec4), Euclidean, in the ray's frame (vec3: F1, F2, depth), into
+ * e[(p+1)(q+1)]; when `homogeneous` is not NULL, also as they were before
+ * the division by w (the same as e when polynomial). */
+void scg_piece_points(scg_isect *c, scg_value iv, scg_value *e, scg_value *homogeneous);
+/* The points of iv (into e, and homogeneous when not NULL) and their box:
+ * returns whether the box holds the ray and begins before the nearest
+ * hit; near and size get its nearest depth and L1 size. */
+scg_value scg_piece_box(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value *e,
+                        scg_value *homogeneous, scg_value *near, scg_value *size);
+/* A hit at the middle of iv, at depth near: the nearest so far. */
+void scg_piece_hit(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value near);
+/* Pushes interval iv (vec4) with meta (vec2). */
+void scg_piece_push(scg_builder *b, const scg_pieces *s, scg_value iv, scg_value meta);
 
 #endif

@@ -344,6 +344,8 @@ static int like_options(const char *like, sc_key_options *opts, sc_error *err)
         opts->tol_milli = key.tol_milli;
     if (!opts->start)
         opts->start = key.start;
+    if (!opts->method)
+        opts->method = key.method;
     if (!opts->outputs)
         opts->outputs = key.outputs;
     for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_MANUAL_BOTH; t++)

@@ -402,7 +402,7 @@ TEST(emit_gen_command)
     CHECK_CONTAINS(errors, "bez3x3-nonsense");
     free(errors);
     snprintf(cmd, sizeof cmd,
-             "%s gen --key %s bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade -o "
+             "%s gen --key %s nurbs3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade -o "
              "%s/gen/bad",
              test_cli, bicubic, test_tmpdir());
     CHECK_INT(test_run(cmd, &out, &errors), 1);
@@ -470,8 +470,8 @@ TEST(emit_gen_scene_keys)
              test_tmpdir());
     CHECK_INT(test_run(cmd, &out, NULL), 0);
     /* The teapot is 32 bicubic polynomial patches: one key per count. */
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-newton-cp-it1-tol0.05-ert1-out.shade.aov.frag");
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-newton-cp-it4-tol0.05-ert1-out.shade.aov.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.aov.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.aov.frag");
     CHECK_CONTAINS(out, "keys 2 files 4\n");
     free(out);
 }

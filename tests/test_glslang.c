@@ -207,6 +207,10 @@ TEST(glslang_other_key_options_validate)
         "bez2x4-poly-bern-trim0-subdiv-mid-it8-tol1-ert0-out.iters",
         "bez3x3-poly-dc-fast2i16-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
         "bez4x2-rat-bern-trim0-hybrid-mid-it4-tol0.25-ert2-out.shade",
+        "nurbs3x2-rat-dc-fast3i16-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
+        "nurbsdyn-poly-loop-trim0-hybrid-mid-it5-tol0.25-ert0-out.iters",
+        "bez3x3-rat-dc-fast3i16-bclip-mid-it32-tol0.05-ert2-out.shade.aov",
+        "bez2x4-poly-bern-trim0-bclip-mid-it8-tol1-ert1-out.iters",
     };
     for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
         scg_key key;

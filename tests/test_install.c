@@ -287,12 +287,12 @@ TEST(install_api_keys_and_glsl)
      * polynomial patches. */
     sc_key keys[4];
     CHECK_INT(sc_query_scene_keys(teapot, NULL, keys, 4, &count, &err), SC_OK);
-    CHECK_STR(keys[0].text, "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0].text, "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     sc_keys_desc desc = {.max_iters = 8, .tolerance_px = 0.5, .start = SC_START_CPMAP,
                          .outputs = SC_OUTPUT_SHADE | SC_OUTPUT_AOV,
                          .termination = SC_TERMINATION_NONE};
     CHECK_INT(sc_query_scene_keys(teapot, &desc, keys, 4, &count, &err), SC_OK);
-    CHECK_STR(keys[0].text, "bez3x3-poly-dc-trim0-newton-cp-it8-tol0.5-ert0-out.shade.aov");
+    CHECK_STR(keys[0].text, "bez3x3-poly-dc-trim0-hybrid-cp-it8-tol0.5-ert0-out.shade.aov");
     desc.max_iters = 1000;
     CHECK_INT(sc_query_scene_keys(teapot, &desc, keys, 4, &count, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "sc_keys_desc.max_iters is out of range: 1000");
@@ -315,7 +315,7 @@ TEST(install_api_keys_and_glsl)
     sc_free_glsl(&glsl);
     CHECK(glsl.fragment == NULL);
 
-    static const char bclip[] = "bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade";
+    static const char bclip[] = "nurbs3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade";
     CHECK_INT(sc_check_key(bclip, &err), SC_FAIL);
     CHECK_STR(err.key, bclip);
     CHECK_INT(sc_generate_glsl(&(sc_glsl_desc){.key = "bez3x3-nonsense"}, &glsl, &err),

@@ -490,12 +490,30 @@ TEST(kernel_subdiv_bezier_degrees)
     method_sweep("subdiv", "bez", "bern", 2, 3, 1, 24, 10, 0.0, 0.01);
 }
 
-/* The hybrid (Newton, then subdivision where Newton does not converge) on
- * the same patches and rays: measured 0.35 % of 2,000 rays missed (Newton
- * alone about 1 %): the fallback's budget of 2 steps a level
- * (hybrid.c) ends some searches early; every hit within 0.075 of the
- * bound. */
+/* The hybrid (Newton, then Newton again from the middles of the sub-patch
+ * and its quarters where the first run's point is not a converged crossing
+ * inside the sub-patch) on the same patches and rays, unrolled and, since
+ * it needs no Bézier points of its own, on NURBS and generic keys. Measured:
+ * 0.10 % of 2,000 rays missed (Newton alone about 1 %), 0.05 % on a far
+ * sheet, worst error 0.0006 of the bound. */
 TEST(kernel_hybrid_bezier_degrees)
 {
     method_sweep("hybrid", "bez", "dc", 1, 5, 1, 8, 40, 0.005, 0.01);
+}
+
+/* Bézier clipping of the surface against the ray's two planes on the same
+ * patches and rays, unrolled (dc and bern), 32 clipping steps: every hit
+ * within the bound of the reference's. Measured: 1 of 1,000 rays (dc) and
+ * none of 80 (bern) missed, worst error 0.09 of the bound; before the
+ * clipped intervals got their absolute slack (bclip.c), 1.1 %. */
+TEST(kernel_bclip_bezier_degrees)
+{
+    method_sweep("bclip", "bez", "dc", 1, 5, 1, 32, 20, 0.005, 0.01);
+    method_sweep("bclip", "bez", "bern", 2, 3, 1, 32, 10, 0.005, 0.01);
+}
+
+TEST(kernel_hybrid_nurbs_and_generic)
+{
+    method_sweep("hybrid", "nurbs", "dc", 1, 5, 3, 8, 30, 0.01, 0.01);
+    method_sweep("hybrid", "bez", "loop", 1, 5, 1, 8, 20, 0.005, 0.01);
 }

@@ -137,6 +137,8 @@ TEST(key_method_combinations)
         {"bez3x3-poly-dc-trim0-subdiv-cp-it24-tol0.05-ert0-out.shade", "write 'mid'"},
         {"bezdyn-poly-loop-trim0-subdiv-mid-it24-tol0.05-ert0-out.shade", "unrolled Bézier"},
         {"nurbs3x3-poly-dc-trim0-subdiv-mid-it24-tol0.05-ert0-out.shade", "unrolled Bézier"},
+        {"bez3x3-poly-dc-trim0-bclip-cp-it32-tol0.05-ert0-out.shade", "write 'mid'"},
+        {"nurbs3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert0-out.shade", "unrolled Bézier"},
     };
     for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
         scg_key k;
@@ -151,6 +153,8 @@ TEST(key_method_combinations)
         "bez2x4-rat-bern-fast2i16-subdiv-mid-it8-tol0.05-ert2-out.shade",
         "bez3x3-poly-dc-trim0-broyden-cp-it6-tol0.05-ert1-out.shade.aov",
         "nurbsdyn-rat-loop-clip3i16-broyden-mid-it6-tol0.05-ert0-out.shade",
+        "bez3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert1-out.shade.aov",
+        "nurbs3x3-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
     };
     for (size_t i = 0; i < sizeof built / sizeof built[0]; i++) {
         scg_key k;
@@ -166,7 +170,6 @@ TEST(key_method_combinations)
 TEST(key_reserved_refused)
 {
     static const struct { const char *text, *says; } cases[] = {
-        {"bez3x3-poly-dc-trim0-bclip-mid-it4-tol0.25-ert0-out.shade", "Bézier clipping (bclip)"},
         {"bez3x3-poly-dc-trim0-newton-view-it4-tol0.25-ert0-out.shade", "view-dependent"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -204,9 +207,9 @@ TEST(key_scene_keys)
     sc_error err;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 3);
-    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
@@ -215,8 +218,8 @@ TEST(key_scene_keys)
     opts.generic_above = 12;
     CHECK_INT(sc_scene_keys(&scene, &opts, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 4);
-    CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-newton-cp-it8-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-newton-cp-it8-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez12x12-poly-dc-trim0-hybrid-cp-it8-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-hybrid-cp-it8-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_scene_free(&scene);
 }
@@ -271,7 +274,7 @@ TEST(key_scene_keys_undrawable_surfaces)
     sc_set_logger(NULL, NULL);
     CHECK_INT(status, SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez2x2-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez2x2-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     CHECK_INT(w.count, 2);
     CHECK_CONTAINS(w.text, "parts.obj: surface 1 (part1): degree 17×1 is above 16");
@@ -291,7 +294,7 @@ TEST(key_scene_keys_teapot)
     int count;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_scene_free(&scene);
 }

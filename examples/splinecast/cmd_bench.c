@@ -36,7 +36,7 @@ static const char usage[] =
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --hull uniform:N|adaptive:TOL   proxy hulls (default adaptive:0.003)\n"
     "  --init mid|cpmap|view  Newton start (default cpmap)\n"
-    "  --method LIST          intersection method (newton); a comma list of\n"
+    "  --method LIST          intersection method (hybrid); a comma list of\n"
     "                         newton, broyden, bclip, subdiv, hybrid compares\n"
     "                         them on SCENE, each timed frame drawn by every\n"
     "                         method in turn: one line `bench variant=method\n"

@@ -48,7 +48,7 @@ typedef struct sc_render_desc {
                                with the message a real GL_OUT_OF_MEMORY gives
                                (sc_gl_fail_memory). 0: no budget. Render
                                targets are not counted */
-    sc_method method;       /* intersection method (default newton); with
+    sc_method method;       /* intersection method (default hybrid); with
                                subdiv, max_iters is the stack depth
                                (SCG_DEFAULT_SUBDIV_DEPTH) */
 } sc_render_desc;

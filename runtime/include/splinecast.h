@@ -248,7 +248,7 @@ typedef struct sc_keys_desc {
                                   early ray termination (its ertN as it is)
                                   and outputs the keys take where the fields
                                   above are zero (`gen --like`) */
-    sc_method method;          /* intersection method (newton), as
+    sc_method method;          /* intersection method (hybrid; like's), as
                                   sc_renderer_desc.method */
 } sc_keys_desc;
 
@@ -407,10 +407,10 @@ typedef struct sc_renderer_desc {
                                   for it and not shared with the context's
                                   cache, so that compile_ms measures
                                   compiling them (benchmarks) */
-    sc_method method;          /* intersection method (newton); bclip is
-                                  refused (not implemented). With subdiv,
+    sc_method method;          /* intersection method (hybrid). With subdiv,
                                   max_iters is the depth of the subdivision
-                                  stack (24) and start is ignored */
+                                  stack (24), with bclip the number of
+                                  clipping steps (32); both ignore start */
 } sc_renderer_desc;
 
 /* Prepares everything that does not depend on the view: hulls, GPU data

@@ -58,18 +58,19 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->trim_degree = tdeg;
         key->trim_iters = opts->trim_iters > 0 ? opts->trim_iters : SCG_DEFAULT_TRIM_ITERS;
     }
-    if (opts->method != SC_METHOD_DEFAULT)
-        key->method = opts->method;
+    key->method = opts->method == SC_METHOD_DEFAULT ? SC_DEFAULT_METHOD : opts->method;
     if (key->method == SC_METHOD_SUBDIV)
         key->max_iters = SCG_DEFAULT_SUBDIV_DEPTH;
+    if (key->method == SC_METHOD_BCLIP)
+        key->max_iters = SCG_DEFAULT_BCLIP_STEPS;
     if (opts->max_iters > 0)
         key->max_iters = opts->max_iters;
     if (opts->tol_milli > 0)
         key->tol_milli = opts->tol_milli;
     if (opts->start != SC_START_DEFAULT)
         key->start = opts->start;
-    if (key->method == SC_METHOD_SUBDIV)
-        key->start = SC_START_MID; /* the only start subdiv keys spell */
+    if (key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_BCLIP)
+        key->start = SC_START_MID; /* the only start these keys spell */
     key->ert = sc_key_ert(opts->termination);
     key->outputs = opts->outputs ? opts->outputs : SC_KEY_DEFAULT_OUTPUTS;
 }

@@ -56,7 +56,8 @@ typedef struct sc_key_options {
      * sc_scene_keys fail; 1: it gets no key and a warning through sc_log,
      * so that a scene can be described whatever it holds (`info`). */
     int skip_undrawable;
-    /* The intersection method (SC_METHOD_DEFAULT: newton). With subdiv,
+    /* The intersection method (SC_METHOD_DEFAULT: SC_DEFAULT_METHOD, the
+     * hybrid). With subdiv,
      * max_iters is the subdivision stack depth (0:
      * SCG_DEFAULT_SUBDIV_DEPTH). */
     sc_method method;
