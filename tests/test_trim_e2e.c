@@ -4,6 +4,7 @@
  * independent double-precision classification (runtime/model/trim.c). Also the
  * render options that choose the method. One context per backend for the
  * whole run; references are cached in the run's temporary folder. */
+#include "gl_context_util.h"
 #include "test.h"
 
 #include <float.h>
@@ -37,30 +38,20 @@ enum { EXAMPLE_COUNT = sizeof example_scenes / sizeof example_scenes[0], VIEW_SI
 static const sc_trim_method all_methods[] = {SC_TRIM_CLIP, SC_TRIM_LEFT, SC_TRIM_FAST};
 static const char *const method_names[] = {"none", "clip", "fast", "left"};
 
-/* The context of a backend, created once; NULL (with the reason in *why)
- * when the machine cannot make one. An EGL request that fell back to
- * OSMesa counts as no EGL context. */
+/* The shared context of a backend (gl_context_util.h); NULL (with the
+ * reason in *why) when the machine cannot make one. An EGL request that
+ * fell back to OSMesa counts as no EGL context. */
 static sc_gl_context *e2e_context(sc_backend backend, const char **why)
 {
-    static sc_gl_context *contexts[3];
-    static sc_error errors[3];
-    static int tried[3];
-    if (!tried[backend]) {
-        tried[backend] = 1;
-        sc_gl_context_desc desc = {.backend = backend};
-        if (sc_gl_context_create(&desc, &contexts[backend], &errors[backend]) == SC_OK &&
-            sc_gl_context_backend(contexts[backend]) != backend) {
-            snprintf(errors[backend].message, sizeof errors[backend].message,
-                     "the context fell back to %s",
-                     cli_backend_name(sc_gl_context_backend(contexts[backend])));
-            sc_gl_context_destroy(contexts[backend]);
-            contexts[backend] = NULL;
-        }
-    }
-    *why = errors[backend].message;
-    if (contexts[backend] && sc_gl_context_make_current(contexts[backend], NULL) != SC_OK)
+    static char fell_back[128];
+    sc_gl_context *ctx = test_gl_context(backend, why);
+    if (ctx && sc_gl_context_backend(ctx) != backend) {
+        snprintf(fell_back, sizeof fell_back, "the context fell back to %s",
+                 cli_backend_name(sc_gl_context_backend(ctx)));
+        *why = fell_back;
         return NULL;
-    return contexts[backend];
+    }
+    return ctx;
 }
 
 static const char *scene_path(const char *name)
