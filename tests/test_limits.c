@@ -16,6 +16,12 @@
 #include "io.h"
 #include "test.h"
 
+/* The hostile cases used to run for minutes or never end. A test asserts
+ * that the work is bounded, not how fast it is (speed is for benchmarks):
+ * the ceiling is far above the second or so they take, under
+ * AddressSanitizer and on a loaded machine too. */
+#define BOUNDED_S 30
+
 /* ---- a growing text ---- */
 
 typedef struct text {
@@ -191,7 +197,7 @@ TEST(limits_budget_obj_curve_copies)
     free(t.s);
     CHECK_INT(status, SC_FAIL);
     CHECK_CONTAINS(error_text(&err), "t.obj:20014: trim: the file expands to more than 256 MiB");
-    CHECK(took < 5);
+    CHECK(took < BOUNDED_S);
 }
 
 /* ---- trim loop pieces ---- */
@@ -282,7 +288,7 @@ TEST(limits_hostile_iges_composite_exponential)
     CHECK_INT(status, SC_FAIL);
     CHECK_CONTAINS(iges_error_text(&err), "entity 102 (D 83): composite curve expands to more "
                                           "than 65536 curves in one trim loop");
-    CHECK(took < 1);
+    CHECK(took < BOUNDED_S);
 }
 
 /* One 142 listed 20,000 times by a 144, its curve a composite of 60,000
@@ -315,7 +321,7 @@ TEST(limits_hostile_iges_loop_listed_repeatedly)
     CHECK_INT(status, SC_FAIL);
     CHECK_CONTAINS(iges_error_text(&err), "t.igs:5: entity 110 (D 3) in a trim loop: the file "
                                           "expands to more than 256 MiB");
-    CHECK(took < 20); /* about 1 s; more under AddressSanitizer */
+    CHECK(took < BOUNDED_S);
 }
 
 /* ---- loop validation ---- */
@@ -338,7 +344,7 @@ TEST(limits_hostile_loop_overlapping_pieces)
     CHECK_CONTAINS(w.text, "t.obj: surface 0 (surface0): trim loop 0 dropped: 24000 of its "
                            "segments overlap so much");
     sc_scene_free(&scene);
-    CHECK(took < 2);
+    CHECK(took < BOUNDED_S);
 }
 
 /* A simple loop of many pieces, all in a few grid cells' worth of space
@@ -417,7 +423,7 @@ TEST(limits_hostile_iges_shared_record)
     CHECK_INT(status, SC_OK);
     CHECK_INT(scene.nsurfaces, 1 + N144);
     sc_scene_free(&scene);
-    CHECK(took < 2);
+    CHECK(took < BOUNDED_S);
 }
 
 /* Pointers into the middle of one long record, each a different line:
@@ -451,7 +457,7 @@ TEST(limits_hostile_iges_overlapping_records)
     free(p.s);
     CHECK_INT(status, SC_FAIL);
     CHECK_CONTAINS(iges_error_text(&err), "tokenising them takes more than 4 times");
-    CHECK(took < 2);
+    CHECK(took < BOUNDED_S);
 }
 
 /* A wrong line count in the directory stays a hint: every entity claiming
