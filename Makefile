@@ -165,11 +165,12 @@ FUZZ_BUILD   = build-fuzz
 FUZZ_CC      ?= clang-14
 FUZZ_SECONDS ?= 20
 FUZZ_NAMES   = $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
-FUZZ_LIB_SRC = $(wildcard gen/base/*.c runtime/model/*.c runtime/io/*.c) gen/key.c
+FUZZ_LIB_SRC = $(wildcard gen/base/*.c runtime/model/*.c runtime/io/*.c) gen/key.c \
+               runtime/terrain/heights.c
 FUZZ_LIB_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(FUZZ_LIB_SRC)) $(BUILD)/embedded_scenes.o
 FUZZ_SAN     = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
                -fno-omit-frame-pointer
-$(BUILD)/tests/fuzz/%.o: INC = $(INC_IO) $(INC_GEN)
+$(BUILD)/tests/fuzz/%.o: INC = $(INC_IO) $(INC_GEN) -Iruntime/terrain
 .PRECIOUS: $(BUILD)/tests/fuzz/%.o
 fuzz: deps
 	@command -v $(FUZZ_CC) >/dev/null || { echo "fuzz: $(FUZZ_CC) is missing (make deps)" >&2; exit 1; }

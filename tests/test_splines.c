@@ -310,6 +310,11 @@ TEST(splines_heights_malformed)
         {"header.pgm", "P2\n2\n", ":3: PGM header ends before its height", 0},
         {"p5short.pgm", "P5\n2 2\n255\n\x01\x02\x03", ":3: PGM raster has 3 bytes", 0},
         {"p5long16.pgm", "P5\n2 2\n1000\n\x00\x01\x00\x02\x00\x03\x00\x04\x00", ":3: PGM raster has 9 bytes", 9 + 12},
+        /* A short file cannot ask for a large grid: the header is checked
+         * against the bytes present (and the limit) before allocating. */
+        {"tall.pgm", "P2\n4000 4000\n255\n1 2 3\n", ":3: PGM has 7 bytes after its header", 0},
+        {"tall5.pgm", "P5\n4000 4000\n255\n\x01", ":3: PGM raster has 1 bytes", 0},
+        {"vast.pgm", "P2\n5000 5000\n255\n", ":3: PGM of 5000 x 5000 is larger than the limit", 0},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         size_t n = cases[c].len ? cases[c].len : strlen(cases[c].text);

@@ -34,6 +34,13 @@ void sc_log(sc_log_level level, const char *fmt, ...)
 void *sc_alloc(size_t count, size_t size);          /* zeroed */
 void *sc_realloc(void *ptr, size_t count, size_t size);
 
+/* Whole file into memory (NUL-terminated, the NUL not counted in *size),
+ * at most `max` bytes, checked as the data arrives (a device or a pipe can
+ * be endless); with `regular_only` anything but a regular file is refused
+ * before reading. Fails with a message naming the file. */
+int sc_read_file_max(const char *path, size_t max, int regular_only, char **data, size_t *size,
+                     sc_error *err);
+
 /* Output files that never appear half-written: sc_out_open writes to a
  * temporary file beside `path`, with the permissions a plain fopen would
  * give (not mkstemp's private ones). sc_out_commit closes it, checks that

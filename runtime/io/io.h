@@ -37,11 +37,7 @@ int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err);
 /* Whole file into memory (NUL-terminated); fails with a message naming the
  * file. At most SC_MAX_FILE_BYTES (envelope.h). */
 int sc_read_file(const char *path, char **data, size_t *size, sc_error *err);
-/* The same with a cap of `max` bytes, checked as the data arrives (a device
- * or a pipe can be endless); with `regular_only` anything but a regular
- * file is refused before reading. */
-int sc_read_file_max(const char *path, size_t max, int regular_only, char **data, size_t *size,
-                     sc_error *err);
+/* (sc_read_file_max, with a cap of its own, is in sc_base.h.) */
 
 /* Fails with "name:line: ..." when `text` is not a text file: a NUL byte, a
  * control character other than tab, CR, LF, FF, VT, or invalid UTF-8.

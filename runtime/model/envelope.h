@@ -25,6 +25,11 @@
 #define SC_GEOMETRY_BUDGET ((size_t)256 << 20)
 /* Curves in one trim loop, after composites are expanded. */
 #define SC_MAX_LOOP_PIECES (1 << 16)
+/* Samples of a height grid (seed 004's terrains): 4096 x 4096, whose
+ * triangular patches already exceed what a frame draws interactively; and
+ * the bytes of a height file, a CSV of that many samples at 16 bytes each. */
+#define SC_MAX_HEIGHT_SAMPLES (1 << 24)
+#define SC_MAX_HEIGHT_FILE_BYTES ((size_t)256 << 20)
 /* Pixels of an image file (AOV): 16384 x 16384. */
 #define SC_MAX_IMAGE_PIXELS ((long long)1 << 28)
 

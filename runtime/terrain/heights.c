@@ -3,6 +3,8 @@
  * that a refused file leaves *out untouched. */
 #include "heights.h"
 
+#include "envelope.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -73,34 +75,6 @@ void sc_heights_padded(const sc_heights *in, int pad, sc_heights *out)
     *out = h;
 }
 
-/* The whole file, NUL-terminated (the terminator is not part of len). */
-static char *slurp(const char *path, size_t *len, sc_error *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        sc_fail(err, path, 0, "cannot open: %s", strerror(errno));
-        return NULL;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = sc_alloc(cap, 1);
-    for (;;) {
-        if (n + 1 >= cap) buf = sc_realloc(buf, cap *= 2, 1);
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        sc_fail(err, path, 0, "read error");
-        return NULL;
-    }
-    buf[n] = 0;
-    *len = n;
-    return buf;
-}
-
 /* Builds the grid from values read top row first. */
 static void from_rows(const double *v, int w, int hgt, double spacing, double scale,
                       sc_heights *out)
@@ -161,25 +135,31 @@ static int read_pgm(const char *path, const char *buf, size_t len, double spacin
                        w, h);
     if (maxval < 1 || maxval > 65535)
         return sc_fail(err, path, line, "PGM maxval %ld is not in 1..65535", maxval);
-    if ((double)w * (double)h > 1e8)
-        return sc_fail(err, path, line, "PGM of %ld x %ld is too large", w, h);
+    if ((double)w * (double)h > SC_MAX_HEIGHT_SAMPLES)
+        return sc_fail(err, path, line, "PGM of %ld x %ld is larger than the limit of %d "
+                       "heights (docs/limits.md)", w, h, SC_MAX_HEIGHT_SAMPLES);
     size_t count = (size_t)w * (size_t)h;
-    double *v = sc_alloc(count, sizeof *v);
-    double inv = 1.0 / (double)maxval;
+    /* The header is checked against the bytes present before anything is
+     * allocated from it: a short file cannot ask for a large grid. */
+    size_t bps = maxval > 255 ? 2 : 1;
     if (binary) {
         /* Exactly one white-space byte ends the header. */
-        if (p >= end || !isspace((unsigned char)*p)) {
-            free(v);
+        if (p >= end || !isspace((unsigned char)*p))
             return sc_fail(err, path, line, "PGM raster missing after the header");
-        }
         p++;
-        size_t bps = maxval > 255 ? 2 : 1, need = count * bps, have = (size_t)(end - p);
-        if (have != need) {
-            free(v);
+        size_t need = count * bps, have = (size_t)(end - p);
+        if (have != need)
             return sc_fail(err, path, line,
                            "PGM raster has %zu bytes, the header's %ld x %ld at %zu byte%s per "
                            "sample needs %zu", have, w, h, bps, bps > 1 ? "s" : "", need);
-        }
+    } else if ((size_t)(end - p) < 2 * count - 1) {
+        /* A plain sample is a digit and a separator at least. */
+        return sc_fail(err, path, line, "PGM has %zu bytes after its header, too few for the "
+                       "header's %ld x %ld samples", (size_t)(end - p), w, h);
+    }
+    double *v = sc_alloc(count, sizeof *v);
+    double inv = 1.0 / (double)maxval;
+    if (binary) {
         const unsigned char *u = (const unsigned char *)p;
         for (size_t k = 0; k < count; k++) {
             long s = bps == 2 ? (long)u[2 * k] << 8 | u[2 * k + 1] : u[k];
@@ -263,6 +243,11 @@ static int read_csv(const char *path, char *buf, size_t len, double spacing, dou
                 free(v);
                 return sc_fail(err, path, line, "value %ld is not finite", count + 1);
             }
+            if (n == (size_t)SC_MAX_HEIGHT_SAMPLES) {
+                free(v);
+                return sc_fail(err, path, line, "more than the limit of %d heights "
+                               "(docs/limits.md)", SC_MAX_HEIGHT_SAMPLES);
+            }
             if (n == cap) v = sc_realloc(v, cap *= 2, sizeof *v);
             v[n++] = x;
             count++;
@@ -295,22 +280,29 @@ static int read_csv(const char *path, char *buf, size_t len, double spacing, dou
     return SC_OK;
 }
 
+int sc_heights_parse(char *data, size_t len, const char *name, double spacing, double zscale,
+                     sc_heights *out, sc_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!(spacing > 0) || !isfinite(spacing) || !isfinite(zscale))
+        return sc_fail(err, name, 0, "grid spacing must be positive and finite, height scale "
+                       "finite");
+    if (len >= 2 && data[0] == 'P' && (data[1] == '2' || data[1] == '5'))
+        return read_pgm(name, data, len, spacing, zscale, out, err);
+    if (len == 0)
+        return sc_fail(err, name, 1, "empty file: no heights");
+    return read_csv(name, data, len, spacing, zscale, out, err);
+}
+
 int sc_heights_read(const char *path, double spacing, double zscale, sc_heights *out,
                     sc_error *err)
 {
-    if (!(spacing > 0) || !isfinite(spacing) || !isfinite(zscale))
-        return sc_fail(err, path, 0, "grid spacing must be positive and finite, height scale "
-                       "finite");
+    memset(out, 0, sizeof *out);
+    char *data;
     size_t len;
-    char *buf = slurp(path, &len, err);
-    if (!buf) return SC_FAIL;
-    int rc;
-    if (len >= 2 && buf[0] == 'P' && (buf[1] == '2' || buf[1] == '5'))
-        rc = read_pgm(path, buf, len, spacing, zscale, out, err);
-    else if (len == 0)
-        rc = sc_fail(err, path, 1, "empty file: no heights");
-    else
-        rc = read_csv(path, buf, len, spacing, zscale, out, err);
-    free(buf);
+    if (sc_read_file_max(path, SC_MAX_HEIGHT_FILE_BYTES, 0, &data, &len, err) != SC_OK)
+        return SC_FAIL;
+    int rc = sc_heights_parse(data, len, path, spacing, zscale, out, err);
+    free(data);
     return rc;
 }

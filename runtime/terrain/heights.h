@@ -34,6 +34,10 @@ static inline double sc_heights_at(const sc_heights *h, int i, int j)
  * (0, 0), with pad 0. */
 int sc_heights_read(const char *path, double spacing, double zscale, sc_heights *out,
                     sc_error *err);
+/* The same from memory (`data` NUL-terminated at data[len], and changed:
+ * CSV lines are cut in place); `name` names the input in errors. */
+int sc_heights_parse(char *data, size_t len, const char *name, double spacing, double zscale,
+                     sc_heights *out, sc_error *err);
 
 /* Franke's test function on [0,1]^2 (its maximum is about 1.22). */
 double sc_franke(double x, double y);
