@@ -329,9 +329,11 @@ static int parse_key(const char *text, scg_key *key, sc_error *err)
     return SC_FAIL;
 }
 
-/* What `like` gives where the desc left zeros. Its ertN is what the
- * programs do; each ertN is sc_key_ert of exactly one termination, so the
- * option that gives it back is found, not guessed. */
+/* What `like` gives where the desc left zeros: every field but those each
+ * surface decides (kind, degrees, rationality, the generic program where a
+ * degree needs it, whether it is trimmed and its trim-curve degree). Its
+ * ertN is what the programs do; each ertN is sc_key_ert of exactly one
+ * termination, so the option that gives it back is found, not guessed. */
 static int like_options(const char *like, sc_key_options *opts, sc_error *err)
 {
     scg_key key;
@@ -348,6 +350,20 @@ static int like_options(const char *like, sc_key_options *opts, sc_error *err)
         opts->method = key.method;
     if (!opts->outputs)
         opts->outputs = key.outputs;
+    if (key.eval == SCG_EVAL_BASIS)
+        opts->eval_basis = 1;
+    if (key.trim != SC_TRIM_NONE && !opts->trim_method) {
+        opts->trim_method = key.trim;
+        if (!opts->trim_iters)
+            opts->trim_iters = key.trim_iters;
+    }
+    if (opts->eval_basis && opts->nurbs_direct) {
+        sc_fail(err, NULL, 0, "evaluation form 'bern' cannot apply: Bernstein sums are for "
+                "Bézier patches, and these keys draw whole NURBS surfaces (nurbs)");
+        if (err)
+            snprintf(err->key, sizeof err->key, "%s", like);
+        return SC_FAIL;
+    }
     for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_MANUAL_BOTH; t++)
         if (sc_key_ert((sc_ray_termination)t) == key.ert)
             opts->termination = (sc_ray_termination)t;

@@ -445,14 +445,21 @@ typedef struct sc_renderer_info {
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
 
 /* A pinhole view. Zero means default: eye and target both zero frame the
- * scene's bounding box, fovy_deg 0 is 30 degrees, width and height 0 are
- * 512. +z is up unless the view is along z (then +y). */
+ * scene (the control points of untrimmed surfaces, the kept region of
+ * trimmed ones), fovy_deg 0 is 30 degrees, width and height 0 are 512.
+ * up zero: +z is up unless the view is along z (then +y). */
 typedef struct sc_camera_desc {
     double eye[3], target[3];
     double fovy_deg;
     int width, height;
-    const char *text;          /* "EX,EY,EZ,TX,TY,TZ,FOVY" instead of eye,
-                                  target and fovy_deg */
+    const char *text;          /* "EX,EY,EZ,TX,TY,TZ,FOVY[,UX,UY,UZ]" instead
+                                  of eye, target, fovy_deg (and up) */
+    double up[3];              /* the up vector (where the view runs along
+                                  it, the zero rule) */
+    double from[3];            /* with the default framing: the direction
+                                  from the target towards the eye (zero: a
+                                  3/4 view from the front left and above,
+                                  "above" along up) */
 } sc_camera_desc;
 
 /* Checks a view without a scene: its text parses, its size is in range,
@@ -510,7 +517,7 @@ typedef struct sc_frame_info {
     const float *normal;       /* 3 per pixel, unit, facing the viewer */
     const float *iters;        /* iterations; NULL for reference frames */
     double render_ms;          /* drawing and reading back, or the reference */
-    char camera[192];          /* "EX,EY,EZ,TX,TY,TZ,FOVY" with 17 digits:
+    char camera[320];          /* "EX,EY,EZ,TX,TY,TZ,FOVY[,UX,UY,UZ]" with 17 digits:
                                   parses back to the same view */
     sc_reference_stats reference;  /* zero unless from sc_render_reference */
 } sc_frame_info;
