@@ -583,6 +583,12 @@ void sc_free_glsl(sc_glsl *glsl)
 int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
                       sc_error *err)
 {
+    return sc_compare_audits_matching(before, after, NULL, out, err);
+}
+
+int sc_compare_audits_matching(const sc_audit_text *before, const sc_audit_text *after,
+                               const char *ignore_fields, FILE *out, sc_error *err)
+{
     const sc_audit_text *texts[2] = {before, after};
     const char *what[2] = {"before", "after"};
     for (int k = 0; k < 2; k++)
@@ -598,8 +604,19 @@ int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, F
             free(lines[0]);
             return SC_FAIL;
         }
-    scg_audit_compare(out, lines[0], count[0], lines[1], count[1], NULL);
+    unsigned ignore = 0;
+    int *old_of_new = NULL, status = SC_OK;
+    if (ignore_fields) {
+        old_of_new = sc_alloc((size_t)count[1] + 1, sizeof *old_of_new);
+        status = scg_audit_match_fields(ignore_fields, &ignore, err);
+        if (status == SC_OK)
+            status = scg_audit_pair(lines[0], count[0], lines[1], count[1], ignore, old_of_new,
+                                    err);
+    }
+    if (status == SC_OK)
+        scg_audit_compare(out, lines[0], count[0], lines[1], count[1], old_of_new, NULL);
+    free(old_of_new);
     free(lines[0]);
     free(lines[1]);
-    return SC_OK;
+    return status;
 }

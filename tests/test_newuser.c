@@ -256,3 +256,42 @@ TEST(newuser_demo_is_quiet)
     free(out);
     free(err);
 }
+
+/* `audit --compare --match`: two audits of one scene under different
+ * methods pair shader for shader once the method (and what goes with it)
+ * is left out; without --match nothing pairs; an ambiguous pairing and an
+ * unknown field are refused by name. */
+TEST(newuser_audit_compare_match)
+{
+    const char *dir = test_tmpdir();
+    char cmd[4096], *out = NULL, *err = NULL;
+    snprintf(cmd, sizeof cmd,
+             "(%s audit --family 3..3 --like bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-"
+             "out.shade.aov > %s/a_newton.txt && %s audit --family 3..3 --like bez3x3-poly-dc-"
+             "trim0-bclip-mid-it32-tol0.05-ert1-out.shade.aov > %s/a_bclip.txt)", test_cli, dir,
+             test_cli, dir);
+    CHECK_INT(test_run(cmd, NULL, NULL), 0);
+    snprintf(cmd, sizeof cmd, "%s audit --compare %s/a_newton.txt %s/a_bclip.txt", test_cli, dir,
+             dir);
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    CHECK_CONTAINS(out, "of 0 shaders in both");
+    free(out);
+    snprintf(cmd, sizeof cmd, "%s audit --compare %s/a_newton.txt %s/a_bclip.txt "
+             "--match method,start,iters", test_cli, dir, dir);
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    /* The 2 fragment programs (3x3, poly and rat) pair; the two vertex
+     * programs (cp and mid) have different names. */
+    CHECK_CONTAINS(out, "of 2 shaders in both");
+    CHECK_CONTAINS(out, "(was bez3x3-rat-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov)");
+    free(out);
+    snprintf(cmd, sizeof cmd, "%s audit --compare %s/a_newton.txt %s/a_bclip.txt "
+             "--match method,start,iters,shape", test_cli, dir, dir);
+    CHECK_INT(test_run(cmd, NULL, &err), 1);
+    CHECK_CONTAINS(err, "both match");
+    free(err);
+    snprintf(cmd, sizeof cmd, "%s audit --compare %s/a_newton.txt %s/a_bclip.txt --match colour",
+             test_cli, dir, dir);
+    CHECK_INT(test_run(cmd, NULL, &err), 1);
+    CHECK_CONTAINS(err, "unknown key field 'colour'");
+    free(err);
+}

@@ -338,6 +338,13 @@ typedef struct sc_audit_text {
  * not an audit line, or a shader audited twice, fails with name:line. */
 int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
                       sc_error *err);
+/* The same, pairing shaders whose keys are equal once the fields that
+ * ignore_fields names (comma-separated: shape, rational, eval, trim, method,
+ * start, iters, tol, ert, out) are left out, so that an option change can
+ * be compared (`audit --compare --match`); NULL pairs equal keys. Fails,
+ * naming them, when two shaders of one audit match the same one. */
+int sc_compare_audits_matching(const sc_audit_text *before, const sc_audit_text *after,
+                               const char *ignore_fields, FILE *out, sc_error *err);
 
 /* ---- GL contexts and runtime specialization ---------------------------- */
 

@@ -124,6 +124,7 @@ static void default_direction_for(const sc_camera *cam, double dir[3])
 
 void sc_camera_default(const sc_scene *scene, sc_camera *cam)
 {
+    memset(cam->up, 0, sizeof cam->up);
     sc_camera_default_from(scene, NULL, cam);
 }
 

@@ -23,11 +23,12 @@ int sc_camera_parse(const char *text, sc_camera *cam, sc_error *err);
 /* Writes the same syntax with %.17g, so it parses back exactly: 7 numbers,
  * or 10 when cam->up is set. */
 void sc_camera_format(const sc_camera *cam, char *buf, size_t size);
-/* A view that frames the scene's bounding box (size and up untouched): a
- * 3/4 view from the front left and above, "above" meaning along cam->up. */
+/* A view that frames the scene's bounding box (size untouched, up the
+ * default): a 3/4 view from the front left, somewhat above. */
 void sc_camera_default(const sc_scene *scene, sc_camera *cam);
-/* The same framing seen from direction `from` (towards the eye from the
- * target, any length; NULL or zero: the 3/4 view). */
+/* The same framing for cam->up (set it first: "above" is along it), seen
+ * from direction `from` (towards the eye from the target, any length; NULL
+ * or zero: the 3/4 view). */
 void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_camera *cam);
 
 /* The box the default view frames (view_bounds.c): control points of
