@@ -285,7 +285,7 @@ TEST(newuser_audit_compare_match)
     CHECK_CONTAINS(out, "(was bez3x3-rat-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov)");
     free(out);
     snprintf(cmd, sizeof cmd, "%s audit --compare %s/a_newton.txt %s/a_bclip.txt "
-             "--match method,start,iters,shape", test_cli, dir, dir);
+             "--match method,start,iters,rational", test_cli, dir, dir);
     CHECK_INT(test_run(cmd, NULL, &err), 1);
     CHECK_CONTAINS(err, "both match");
     free(err);

@@ -18,6 +18,7 @@ static const command commands[] = {
     {"bench", cmd_bench, "speed of the GPU path: frame time, fill rate, iterations"},
     {"terrain", cmd_terrain, "ray cast the quartic spline of a height grid on the GPU"},
     {"splines", cmd_splines, "the quartic spline of a height grid; Table I error"},
+    {"pick", cmd_pick, "the surface, (u, v), point and normal under an image point"},
 };
 
 static void usage(FILE *f)

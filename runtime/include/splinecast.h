@@ -557,6 +557,34 @@ typedef struct sc_comparison {
 int sc_compare_frames(sc_frame_id reference, sc_frame_id test, sc_comparison *out,
                       sc_error *err);
 
+/* ---- picking (runtime/api_pick.c, docs/api.md) ------------------------ */
+
+typedef struct sc_pick_result {
+    int hit;                   /* 0: nothing under the point */
+    int surface;               /* 0-based index, as sc_query_surface_info and
+                                  sc_eval_surface take it; -1 for a miss */
+    double u, v;               /* in the surface's own knot range:
+                                  sc_eval_surface(u, v) gives point */
+    double point[3];           /* world space */
+    double normal[3];          /* unit, world space, facing the viewer */
+    double t;                  /* distance from the eye along the unit ray */
+    /* How it was found: */
+    int gpu_surface;           /* the frame's surface id at the pixel (-1) */
+    double gpu_u, gpu_v;       /* the frame's float (u, v) there */
+    int newton_iters;          /* double-precision Newton steps from it */
+    int by_reference;          /* 1: the CPU reference traced the ray
+                                  (Newton left the surface's kept region:
+                                  a silhouette, a trim edge) */
+} sc_pick_result;
+
+/* What lies under image point (x, y) of the renderer's last frame
+ * (sc_draw first): x a column and y a row from the top left, in pixels,
+ * pixel centres at +0.5. The frame's AOVs give the surface and a float
+ * (u, v); Newton's method on the ray against the surface's NURBS refines
+ * them in double precision. A pixel the frame did not hit is a miss.
+ * Fails for a point outside the frame. */
+int sc_pick(sc_renderer_id renderer, double x, double y, sc_pick_result *out, sc_error *err);
+
 #ifdef __cplusplus
 }
 #endif
