@@ -295,3 +295,62 @@ TEST(newuser_audit_compare_match)
     CHECK_CONTAINS(err, "unknown key field 'colour'");
     free(err);
 }
+
+/* Every debug view shows misses in the shaded view's background grey and
+ * carries a legend strip (white text on a dark strip along the bottom);
+ * the shaded view is left as it is. */
+TEST(newuser_debug_views_background_and_legend)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_destroy_scene(scene);
+        SKIP("no GL context: %s", err.message);
+    }
+    static const sc_show views[] = {SC_SHOW_SHADE, SC_SHOW_UV, SC_SHOW_ITERS, SC_SHOW_NORMAL,
+                                    SC_SHOW_DEPTH, SC_SHOW_HULL};
+    enum { W = 128, H = 96 };
+    for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+        sc_renderer_id r;
+        sc_frame_id frame;
+        sc_frame_info info;
+        CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.show = views[v]}, &r, &err),
+                  SC_OK);
+        CHECK_INT(sc_render(r, &(sc_camera_desc){.width = W, .height = H}, &frame, &err), SC_OK);
+        CHECK_INT(sc_query_frame_info(frame, &info, &err), SC_OK);
+        /* The top left corner is a miss in the default view: background. */
+        CHECK_INT(info.surface[0], -1);
+        for (int c = 0; c < 3; c++)
+            CHECK_INT(info.rgba[c], 51);
+        CHECK_INT(info.rgba[3], 255);
+        int misses = 0, grey = 0, strip = 0, text = 0;
+        for (int p = 0; p < W * (H - 14); p++)
+            if (info.surface[p] < 0) {
+                misses++;
+                grey += info.rgba[4 * p] == 51 && info.rgba[4 * p + 1] == 51 &&
+                        info.rgba[4 * p + 2] == 51;
+            }
+        for (int p = W * (H - 14); p < W * H; p++) {
+            strip += info.rgba[4 * p] == 20;
+            text += info.rgba[4 * p] == 230;
+        }
+        if (views[v] == SC_SHOW_HULL) {
+            CHECK(grey > 0);  /* the proxies cover some misses */
+        } else {
+            CHECK_INT(grey, misses);
+        }
+        if (views[v] == SC_SHOW_SHADE) {
+            CHECK_INT(text, 0);
+        } else {
+            CHECK(strip > W * 14 / 2);
+            CHECK(text > 20);
+        }
+        sc_destroy_frame(frame);
+        sc_destroy_renderer(r);
+    }
+    sc_destroy_context(ctx);
+    sc_destroy_scene(scene);
+    sc_shutdown();
+}
