@@ -243,11 +243,16 @@ typedef struct sc_keys_desc {
                                   above SC_MAX_DEGREE) gets no key and a
                                   warning through the logger, instead of
                                   failing the call */
-    const char *like;          /* a key whose evaluation form (nurbs or
-                                  Bezier), start, iterations, tolerance,
-                                  early ray termination (its ertN as it is)
-                                  and outputs the keys take where the fields
-                                  above are zero (`gen --like`) */
+    const char *like;          /* a key whose fields the keys take where
+                                  the fields above are zero (`gen --like`):
+                                  all but those each surface decides (kind,
+                                  degrees, rationality, loop where a degree
+                                  needs it, trimmed or not and the trim
+                                  degree). So: nurbs or Bezier, bern, the
+                                  trim method and cap, method, start,
+                                  iterations, tolerance, ertN as it is and
+                                  outputs. bern with nurbs_direct fails,
+                                  naming the field and the key */
     sc_method method;          /* intersection method (hybrid; like's), as
                                   sc_renderer_desc.method */
 } sc_keys_desc;
