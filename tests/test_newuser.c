@@ -158,6 +158,12 @@ TEST(newuser_ref_and_render_word_errors_alike)
         free(e_ref);
         free(e_render);
     }
+    /* terrain writes a PNG too. */
+    char cmd[2048], *err = NULL;
+    snprintf(cmd, sizeof cmd, "%s terrain --franke 100 -o %s/alike.txt", test_cli, dir);
+    CHECK_INT(test_run(cmd, NULL, &err), 2);
+    CHECK_CONTAINS(err, "must end in .png, not");
+    free(err);
     char path[1024];
     snprintf(path, sizeof path, "%s/alike.txt", dir);
     CHECK(!exists(path));
