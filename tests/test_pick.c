@@ -16,6 +16,7 @@ enum { PICK_SIZE = 96, PICK_GRID = 12 };
 
 typedef struct pick_counts {
     int both, misses, disagree;
+    double worst;          /* largest point distance / scene size */
     int no_gl;
 } pick_counts;
 
@@ -84,6 +85,7 @@ static void pick_against_reference(const char *path, const double up[3], pick_co
             for (int k = 0; k < 3; k++)
                 dist += (pick.point[k] - ref.point[k]) * (pick.point[k] - ref.point[k]);
             dist = sqrt(dist);
+            n->worst = fmax(n->worst, dist / size);
             if (dist > 1e-6 * size)
                 fprintf(stderr, "  %s (%g, %g): surface %d (%.17g, %.17g) vs reference %d "
                         "(%.17g, %.17g)\n", path, x, y, pick.surface, pick.u, pick.v,
@@ -127,8 +129,8 @@ TEST(pick_tea_set_against_reference)
             SKIP("no GL context");
         if (test_failed_flag && !failed_before)
             return;
-        fprintf(stderr, "  %s: %d both hit, %d both miss, %d disagree\n", sets[i].file, n.both,
-                n.misses, n.disagree);
+        fprintf(stderr, "  %s: %d both hit, %d both miss, %d disagree, worst %.3g of the size\n",
+                sets[i].file, n.both, n.misses, n.disagree, n.worst);
         /* Enough of the grid hits; at most one silhouette point may differ. */
         CHECK(n.both >= 5);
         CHECK(n.disagree <= 1);
@@ -148,8 +150,8 @@ TEST(pick_trimmed_iges_against_reference)
             SKIP("no GL context");
         if (test_failed_flag && !failed_before)
             return;
-        fprintf(stderr, "  %s: %d both hit, %d both miss, %d disagree\n", files[i], n.both,
-                n.misses, n.disagree);
+        fprintf(stderr, "  %s: %d both hit, %d both miss, %d disagree, worst %.3g of the size\n",
+                files[i], n.both, n.misses, n.disagree, n.worst);
         CHECK(n.both >= 5);
         CHECK(n.disagree <= 1);
     }
