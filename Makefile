@@ -22,7 +22,8 @@ LIBS    = -lpng -lqhull_r $(GLSLANG_LIBS) -lEGL -ldl -lpthread -lm
 # Debian packages the project needs to build, test and demo.
 DEB_PACKAGES = build-essential pkg-config libpng-dev libqhull-dev glslang-dev glslang-tools \
                libosmesa6-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
-               libglu1-mesa-dev khronos-api gnuplot-nox occt-misc clang-14 libclang-rt-14-dev
+               libglu1-mesa-dev khronos-api gnuplot-nox occt-misc clang-14 libclang-rt-14-dev \
+               libglfw3-dev xvfb xauth
 
 # The layers, lowest first (docs/README.md). Each folder is compiled with the
 # include paths of the layers it may use and no others, so that a header
@@ -83,7 +84,7 @@ CLI  = $(BUILD)/splinecast
 TESTS = $(BUILD)/run_tests
 
 .PHONY: all deps demo test asan fuzz fuzz-smoke check-big clean install uninstall
-all: $(CLI) $(TESTS)
+all: $(CLI) $(TESTS) $(BUILD)/viewer
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do \
@@ -255,3 +256,9 @@ uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/lib/libsplinecast.a $(DESTDIR)$(PREFIX)/include/splinecast.h \
 	  $(DESTDIR)$(PREFIX)/include/splinecast_base.h $(DESTDIR)$(PREFIX)/include/splinecast_options.h \
 	  $(DESTDIR)$(PREFIX)/bin/splinecast $(DESTDIR)$(PREFIX)/lib/pkgconfig/splinecast.pc
+
+# The interactive viewer (examples/viewer, docs/api.md): a GLFW window that
+# shows the library's frames; public API only. Its test runs it under Xvfb.
+VIEWER_LIBS = -lglfw -lGL -lpng
+$(BUILD)/viewer: $(BUILD)/examples/viewer/viewer.o $(LIB)
+	$(CC) $(LDFLAGS) -o $@ $< $(LIB) $(LIBS) $(VIEWER_LIBS)

@@ -270,9 +270,32 @@ static double percent_change(long before, long after)
     return 100.0 * (double)(after - before) / (double)before;
 }
 
+/* The old line paired with new line i. */
+static const scg_audit_line *paired(const scg_audit_line *old_lines, int old_count,
+                                    const scg_audit_line *new_lines, const int *old_of_new,
+                                    int i)
+{
+    if (!old_of_new)
+        return find_line(old_lines, old_count, &new_lines[i]);
+    return old_of_new[i] >= 0 ? &old_lines[old_of_new[i]] : NULL;
+}
+
+static int is_paired(const scg_audit_line *old_lines, int old_count,
+                     const scg_audit_line *new_lines, int new_count, const int *old_of_new,
+                     int j)
+{
+    if (!old_of_new)
+        return find_line(new_lines, new_count, &old_lines[j]) != NULL;
+    for (int i = 0; i < new_count; i++)
+        if (old_of_new[i] == j)
+            return 1;
+    (void)old_count;
+    return 0;
+}
+
 void scg_audit_compare(FILE *out, const scg_audit_line *old_lines, int old_count,
                        const scg_audit_line *new_lines, int new_count,
-                       scg_audit_totals *totals)
+                       const int *old_of_new, scg_audit_totals *totals)
 {
     scg_audit_totals t;
     memset(&t, 0, sizeof t);
@@ -280,22 +303,25 @@ void scg_audit_compare(FILE *out, const scg_audit_line *old_lines, int old_count
         for (int pass = 0; pass < 2; pass++) {   /* better first, then worse */
             for (int i = 0; i < new_count; i++) {
                 const scg_audit_line *now = &new_lines[i];
-                const scg_audit_line *was = find_line(old_lines, old_count, now);
+                const scg_audit_line *was = paired(old_lines, old_count, new_lines, old_of_new, i);
                 if (!was)
                     continue;
                 long before = was->value[m], after = now->value[m];
                 int better = after < before, worse = after > before;
                 if ((pass == 0 && !better) || (pass == 1 && !worse))
                     continue;
-                fprintf(out, "%s %s: %s %s %ld -> %ld (%+.2f%%)\n", better ? "better" : "worse",
+                fprintf(out, "%s %s: %s %s %ld -> %ld (%+.2f%%)", better ? "better" : "worse",
                         metric_names[m], now->key, scg_stage_audit_name(now->stage), before,
                         after, percent_change(before, after));
+                if (strcmp(was->key, now->key))
+                    fprintf(out, " (was %s)", was->key);
+                fputc('\n', out);
             }
         }
     }
     for (int i = 0; i < new_count; i++) {
         const scg_audit_line *now = &new_lines[i];
-        const scg_audit_line *was = find_line(old_lines, old_count, now);
+        const scg_audit_line *was = paired(old_lines, old_count, new_lines, old_of_new, i);
         if (!was) {
             t.added++;
             fprintf(out, "added: %s %s\n", now->key, scg_stage_audit_name(now->stage));
@@ -309,11 +335,11 @@ void scg_audit_compare(FILE *out, const scg_audit_line *old_lines, int old_count
             t.hurt[m] += now->value[m] > was->value[m];
         }
     }
-    for (int i = 0; i < old_count; i++)
-        if (!find_line(new_lines, new_count, &old_lines[i])) {
+    for (int j = 0; j < old_count; j++)
+        if (!is_paired(old_lines, old_count, new_lines, new_count, old_of_new, j)) {
             t.removed++;
-            fprintf(out, "removed: %s %s\n", old_lines[i].key,
-                    scg_stage_audit_name(old_lines[i].stage));
+            fprintf(out, "removed: %s %s\n", old_lines[j].key,
+                    scg_stage_audit_name(old_lines[j].stage));
         }
     for (int m = 0; m < SCG_AUDIT_METRIC_COUNT; m++)
         fprintf(out, "total %s: %ld -> %ld (%+.2f%%); helped %d, hurt %d, of %d shaders in both\n",

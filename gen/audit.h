@@ -90,9 +90,21 @@ typedef struct scg_audit_totals {
 
 /* Prints, for each metric, every shader that got better or worse (old ->
  * new and the change in percent), then shaders that appeared or went away,
- * then one totals line per metric over the shaders both audits hold. */
+ * then one totals line per metric over the shaders both audits hold.
+ * old_of_new (from scg_audit_pair) pairs the lines; NULL pairs equal keys. */
 void scg_audit_compare(FILE *out, const scg_audit_line *old_lines, int old_count,
                        const scg_audit_line *new_lines, int new_count,
-                       scg_audit_totals *totals);
+                       const int *old_of_new, scg_audit_totals *totals);
+
+/* audit_match.c. The bits of the key fields a comma-separated list names
+ * (shape, rational, eval, trim, method, start, iters, tol, ert, out). */
+int scg_audit_match_fields(const char *list, unsigned *ignore, sc_error *err);
+/* For each new line, the index of the old line of the same stage whose key
+ * equals it with the `ignore` fields left out (-1: none). Names that are
+ * not keys (vertex programs) pair whole. Fails when the pairing is not one
+ * to one. */
+int scg_audit_pair(const scg_audit_line *old_lines, int old_count,
+                   const scg_audit_line *new_lines, int new_count, unsigned ignore,
+                   int *old_of_new, sc_error *err);
 
 #endif

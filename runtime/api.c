@@ -329,9 +329,11 @@ static int parse_key(const char *text, scg_key *key, sc_error *err)
     return SC_FAIL;
 }
 
-/* What `like` gives where the desc left zeros. Its ertN is what the
- * programs do; each ertN is sc_key_ert of exactly one termination, so the
- * option that gives it back is found, not guessed. */
+/* What `like` gives where the desc left zeros: every field but those each
+ * surface decides (kind, degrees, rationality, the generic program where a
+ * degree needs it, whether it is trimmed and its trim-curve degree). Its
+ * ertN is what the programs do; each ertN is sc_key_ert of exactly one
+ * termination, so the option that gives it back is found, not guessed. */
 static int like_options(const char *like, sc_key_options *opts, sc_error *err)
 {
     scg_key key;
@@ -348,6 +350,20 @@ static int like_options(const char *like, sc_key_options *opts, sc_error *err)
         opts->method = key.method;
     if (!opts->outputs)
         opts->outputs = key.outputs;
+    if (key.eval == SCG_EVAL_BASIS)
+        opts->eval_basis = 1;
+    if (key.trim != SC_TRIM_NONE && !opts->trim_method) {
+        opts->trim_method = key.trim;
+        if (!opts->trim_iters)
+            opts->trim_iters = key.trim_iters;
+    }
+    if (opts->eval_basis && opts->nurbs_direct) {
+        sc_fail(err, NULL, 0, "evaluation form 'bern' cannot apply: Bernstein sums are for "
+                "Bézier patches, and these keys draw whole NURBS surfaces (nurbs)");
+        if (err)
+            snprintf(err->key, sizeof err->key, "%s", like);
+        return SC_FAIL;
+    }
     for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_MANUAL_BOTH; t++)
         if (sc_key_ert((sc_ray_termination)t) == key.ert)
             opts->termination = (sc_ray_termination)t;
@@ -567,6 +583,12 @@ void sc_free_glsl(sc_glsl *glsl)
 int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
                       sc_error *err)
 {
+    return sc_compare_audits_matching(before, after, NULL, out, err);
+}
+
+int sc_compare_audits_matching(const sc_audit_text *before, const sc_audit_text *after,
+                               const char *ignore_fields, FILE *out, sc_error *err)
+{
     const sc_audit_text *texts[2] = {before, after};
     const char *what[2] = {"before", "after"};
     for (int k = 0; k < 2; k++)
@@ -582,8 +604,19 @@ int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, F
             free(lines[0]);
             return SC_FAIL;
         }
-    scg_audit_compare(out, lines[0], count[0], lines[1], count[1], NULL);
+    unsigned ignore = 0;
+    int *old_of_new = NULL, status = SC_OK;
+    if (ignore_fields) {
+        old_of_new = sc_alloc((size_t)count[1] + 1, sizeof *old_of_new);
+        status = scg_audit_match_fields(ignore_fields, &ignore, err);
+        if (status == SC_OK)
+            status = scg_audit_pair(lines[0], count[0], lines[1], count[1], ignore, old_of_new,
+                                    err);
+    }
+    if (status == SC_OK)
+        scg_audit_compare(out, lines[0], count[0], lines[1], count[1], old_of_new, NULL);
+    free(old_of_new);
     free(lines[0]);
     free(lines[1]);
-    return SC_OK;
+    return status;
 }

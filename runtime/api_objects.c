@@ -150,7 +150,9 @@ context_object *sc_api_current_context;
 
 int sc_api_make_current(context_object *c, sc_error *err)
 {
-    if (c == sc_api_current_context)
+    /* The program may have made a context of its own current since (a
+     * window's): then the library's is made current again. */
+    if (c == sc_api_current_context && sc_gl_context_is_current(c->gl))
         return SC_OK;
     if (sc_gl_context_make_current(c->gl, err) != SC_OK)
         return SC_FAIL;

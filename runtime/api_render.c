@@ -267,7 +267,9 @@ static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_cam
     static const sc_camera_desc defaults = {0};
     if (!desc)
         desc = &defaults;
-    sc_camera_default(scene, cam);
+    memset(cam, 0, sizeof *cam);
+    memcpy(cam->up, desc->up, sizeof cam->up);
+    sc_camera_default_from(scene, desc->from, cam);
     if (desc->text) {
         if (sc_camera_parse(desc->text, cam, err) != SC_OK)
             return SC_FAIL;
@@ -290,7 +292,7 @@ static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_cam
     double dist2 = 0;
     int finite = isfinite(cam->fovy_deg);
     for (int c = 0; c < 3; c++) {
-        finite &= isfinite(cam->eye[c]) && isfinite(cam->target[c]);
+        finite &= isfinite(cam->eye[c]) && isfinite(cam->target[c]) && isfinite(cam->up[c]);
         dist2 += (cam->target[c] - cam->eye[c]) * (cam->target[c] - cam->eye[c]);
     }
     if (!finite || !(dist2 > 0) || !(cam->fovy_deg > 0 && cam->fovy_deg < 180))

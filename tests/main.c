@@ -13,6 +13,7 @@
 
 int test_failed_flag;
 int test_skipped_flag;
+char test_skip_reason[1024];
 const char *test_data_dir;
 const char *test_root_dir;
 const char *test_cli;
@@ -70,6 +71,7 @@ int main(int argc, char **argv)
             continue;
         test_failed_flag = 0;
         test_skipped_flag = 0;
+        test_skip_reason[0] = 0;
         double t0 = sc_now();
         tests[i].fn();
         double dt = sc_now() - t0;
@@ -78,7 +80,7 @@ int main(int argc, char **argv)
             printf("FAIL %s (%.2f s)\n", tests[i].name, dt);
         } else if (test_skipped_flag) {
             skipped++;
-            printf("skip %s\n", tests[i].name);
+            printf("skip %s: %s\n", tests[i].name, test_skip_reason);
         } else {
             passed++;
             printf("ok   %s (%.2f s)\n", tests[i].name, dt);

@@ -78,22 +78,22 @@ extern const char *test_cli;
         }                                                                      \
     } while (0)
 
-/* Marks the running test skipped (with a reason) and returns. */
+/* Marks the running test skipped and returns; the reason is printed on its
+ * `skip` line, so that no test skips silently. */
 #define SKIP(...)                                                              \
     do {                                                                       \
-        fprintf(stderr, "  skipped: ");                                        \
-        fprintf(stderr, __VA_ARGS__);                                          \
-        fprintf(stderr, "\n");                                                 \
+        snprintf(test_skip_reason, sizeof test_skip_reason, __VA_ARGS__);      \
         test_skipped_flag = 1;                                                 \
         return;                                                                \
     } while (0)
 extern int test_skipped_flag;
+extern char test_skip_reason[1024];
 
 /* Skips the running test when a shared model it needs is not there. */
 #define REQUIRE_DATA(rel)                                                      \
     do {                                                                       \
         if (access(test_data(rel), R_OK) != 0)                                 \
-            SKIP("%s: not found (the shared models, SC_DATA)", test_data(rel)); \
+            SKIP("%s: not found (set SC_DATA to the shared models' folder)", test_data(rel)); \
     } while (0)
 
 /* Helpers (tests/util.c). */

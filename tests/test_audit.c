@@ -191,7 +191,7 @@ TEST(audit_compare_lists_and_totals)
     scg_audit_totals totals;
     FILE *out = tmpfile();
     CHECK(out != NULL);
-    scg_audit_compare(out, old_lines, 3, new_lines, 3, &totals);
+    scg_audit_compare(out, old_lines, 3, new_lines, 3, NULL, &totals);
     CHECK_INT(totals.common, 2);
     CHECK_INT(totals.added, 1);
     CHECK_INT(totals.removed, 1);

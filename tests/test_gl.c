@@ -798,14 +798,14 @@ TEST(gl_render_update_one_surface)
     sc_scene_free(&scene);
 }
 
-/* The command line: the stats line, both files, and a clean refusal of a
+/* The command line: the stats line, both files (the AOV with --aov), and a clean refusal of a
  * broken scene (file:line, nonzero exit, no output). */
 TEST(gl_render_cli)
 {
     char cmd[2048], *out = NULL, *err_text = NULL;
     const char *dir = test_tmpdir();
-    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/cli.png --size 48x40 --frames 2", test_cli,
-             dir);
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/cli.png --size 48x40 --frames 2 --aov %s/cli.aov",
+             test_cli, dir, dir);
     int status = test_run(cmd, &out, &err_text);
     if (status == 1 && err_text && strstr(err_text, "OSMesa")) {
         free(out);

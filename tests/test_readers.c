@@ -50,9 +50,8 @@ TEST(readers_teaset_counts_and_points)
     } sets[] = {{"teaset/teapot32.bpt", 32}, {"teaset/teapot.bpt", 28},
                 {"teaset/teacup.bpt", 26}, {"teaset/teaspoon.bpt", 16}};
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++) {
+        REQUIRE_DATA(sets[i].file);
         const char *path = test_data(sets[i].file);
-        if (access(path, R_OK))
-            SKIP("test data %s not found", path);
         sc_scene scene;
         sc_error err;
         CHECK_INT(sc_read_scene(path, &scene, &err), SC_OK);

@@ -10,7 +10,7 @@
 
 static const char usage[] =
     "usage: splinecast audit KEYS [-v]\n"
-    "       splinecast audit --compare OLD NEW\n"
+    "       splinecast audit --compare OLD NEW [--match FIELDS]\n"
     "\n"
     "Generates and validates every key and prints one line per shader:\n"
     "  KEY - FS: N inst, N spirv-inst, N vec4-regs (bound B), N tex, N bytes\n"
@@ -24,6 +24,11 @@ static const char usage[] =
     "  --compare OLD NEW  read two saved audits and print what got better and\n"
     "                     worse per metric, shaders added and removed, and\n"
     "                     totals over the shaders both hold\n"
+    "  --match FIELDS     with --compare: pair shaders whose keys agree once the\n"
+    "                     key fields FIELDS are left out (comma-separated: shape,\n"
+    "                     rational, eval, trim, method, start, iters, tol, ert,\n"
+    "                     out), to compare across an option change, e.g.\n"
+    "                     --match method,start,iters\n"
     "\n";
 
 /* The whole file, NUL-terminated; NULL after printing why not. */
@@ -63,7 +68,7 @@ static char *read_file(const char *path, size_t *size)
     return text;
 }
 
-static int compare(const char *old_path, const char *new_path)
+static int compare(const char *old_path, const char *new_path, const char *match)
 {
     sc_audit_text before = {.name = old_path}, after = {.name = new_path};
     char *old_text = read_file(old_path, &before.size);
@@ -73,7 +78,9 @@ static int compare(const char *old_path, const char *new_path)
         before.text = old_text;
         after.text = new_text;
         sc_error err = {0};
-        status = sc_compare_audits(&before, &after, stdout, &err) == SC_OK ? 0 : cli_report(&err);
+        status = sc_compare_audits_matching(&before, &after, match, stdout, &err) == SC_OK
+                     ? 0
+                     : cli_report(&err);
     }
     free(old_text);
     free(new_text);
@@ -87,9 +94,13 @@ int cmd_audit(int argc, char **argv)
         return 0;
     }
     if (argc >= 2 && !strcmp(argv[1], "--compare")) {
-        if (argc != 4)
-            return cli_usage_error("audit", "--compare wants OLD NEW and nothing else");
-        return compare(argv[2], argv[3]);
+        const char *match = NULL;
+        if (argc == 6 && !strcmp(argv[4], "--match"))
+            match = argv[5];
+        else if (argc != 4)
+            return cli_usage_error("audit", "--compare wants OLD NEW [--match FIELDS] and "
+                                   "nothing else");
+        return compare(argv[2], argv[3], match);
     }
     gen_keys set;
     int first_other;

@@ -38,8 +38,14 @@ const char gen_keys_usage[] =
     "  --family LO..HI    bez keys of every degree pair LO..HI x LO..HI, rational\n"
     "                     and not\n"
     "with --scene and --family:\n"
-    "  --like KEY         method, start, iterations, tolerance, early ray\n"
-    "                     termination and outputs (default: those of\n"
+    "  --like KEY         every field of KEY except those each surface (or\n"
+    "                     degree pair) decides: kind, degrees, poly|rat, the\n"
+    "                     generic program (loop) where a degree needs it, and\n"
+    "                     whether it is trimmed and its trim-curve degree. So\n"
+    "                     bern, the trim method and its cap, method, start,\n"
+    "                     iterations, tolerance, ert and outputs all come from\n"
+    "                     KEY; a field that cannot apply is an error naming it\n"
+    "                     (default: those of\n"
     "                     bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov,\n"
     "                     the programs `render` draws with by default)\n"
     "with any of them:\n"
@@ -82,8 +88,8 @@ static int parse_iters(const char *text, int *iters, int max)
 }
 
 /* The keys the scene's surfaces need, each at every iteration count, with
- * what --like gives (the scene decides kind, degrees, rationality,
- * evaluation form and trimming). Returns 0, or 1 after printing why the
+ * what --like gives (the scene decides kind, degrees, rationality, the
+ * generic program where a degree needs it, and whether it is trimmed). Returns 0, or 1 after printing why the
  * scene could not be read or drawn (`render` refuses a surface no program
  * draws). */
 static int add_scene_keys(const char *path, const char *like, const int *iters, int niters,

@@ -7,43 +7,26 @@
 
 #include "commands.h"
 #include "splinecast.h"
+#include "view_options.h"
 
 static const char usage[] =
-    "usage: splinecast ref SCENE -o OUT.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ,FOVY]\n"
-    "                      [--threads N] [--stats]\n"
+    "usage: splinecast ref SCENE -o OUT.png [view options] [--threads N] [--stats]\n"
     "\n"
     "Ray casts SCENE (.bpt, .obj, .igs/.iges, or `teapot`) on the CPU in double\n"
     "precision (object-space subdivision to floating-point precision, exact trimming)\n"
     "and writes a shaded PNG to OUT.png and the AOV file (surface id, u v, distance,\n"
-    "point, normal facing the viewer) beside it: the extension of OUT is replaced by\n"
-    ".aov (out.png -> out.aov). Format: docs/aov-format.md.\n"
+    "point, normal facing the viewer) beside it, which `diff` reads: the extension\n"
+    "of OUT is replaced by .aov (out.png -> out.aov). Format: docs/aov-format.md.\n"
     "\n"
-    "  --size WxH      image size (default 512x512)\n"
-    "  --camera ...    eye, target, vertical field of view in degrees; +z up unless the\n"
-    "                  view is along z, then +y (default: a 3/4 view framing the scene)\n"
-    "  --threads N     worker threads (default: one per online core)\n"
-    "  --stats         also print rays per second\n"
+    "%s"
+    "  --threads N            worker threads (default: one per online core)\n"
+    "  --stats                also print rays per second\n"
     "\n"
     "stdout:\n"
     "  ref image=OUT.png aov=OUT.aov size=WxH camera=EX,...,FOVY hit_pixels=N\n"
     "  stats rays=N hits=N seconds=S rays_per_s=R subdivisions_per_ray=D over_budget=N threads=T\n"
     "        (--stats; over_budget counts rays whose search was cut short, normally 0)\n"
     "Progress goes to stderr for images above 256x256.\n";
-
-static int parse_size(const char *text, int *width, int *height)
-{
-    char *end;
-    long w = strtol(text, &end, 10);
-    if (end == text || (*end != 'x' && *end != 'X'))
-        return 0;
-    const char *h_text = end + 1;
-    long h = strtol(h_text, &end, 10);
-    if (end == h_text || *end || w < 1 || h < 1 || w > 16384 || h > 16384)
-        return 0;
-    *width = (int)w;
-    *height = (int)h;
-    return 1;
-}
 
 static void print_progress(double fraction, void *user)
 {
@@ -54,57 +37,56 @@ static void print_progress(double fraction, void *user)
 int cmd_ref(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
-        fputs(usage, stdout);
+        printf(usage, cli_view_usage);
         return 0;
     }
-    const char *scene_path = NULL, *out_path = NULL, *camera_text = NULL;
-    int width = 512, height = 512, threads = 0, want_stats = 0;
+    const char *scene_path = NULL, *out_path = NULL;
+    cli_view view_opts;
+    cli_view_init(&view_opts);
+    int threads = 0, want_stats = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has_value = i + 1 < argc;
+        int taken = cli_view_option("ref", argc, argv, &i, &view_opts);
+        if (taken == 2)
+            return 2;
+        if (taken)
+            continue;
         if (!strcmp(a, "-o") && has_value)
             out_path = argv[++i];
-        else if (!strcmp(a, "--size") && has_value) {
-            if (!parse_size(argv[++i], &width, &height))
-                return cli_usage_error("ref", "bad --size '%s' (expected WxH, e.g. 512x512)",
-                                       argv[i]);
-        } else if (!strcmp(a, "--camera") && has_value)
-            camera_text = argv[++i];
         else if (!strcmp(a, "--threads") && has_value) {
             char *end;
             long n = strtol(argv[++i], &end, 10);
             if (*end || n < 1 || n > 256)
-                return cli_usage_error("ref", "bad --threads '%s' (expected 1..256)", argv[i]);
+                return cli_usage_error("ref", "--threads takes 1 to 256, not '%s'", argv[i]);
             threads = (int)n;
         } else if (!strcmp(a, "--stats"))
             want_stats = 1;
         else if (a[0] == '-' && a[1])
-            return cli_usage_error("ref", "unknown option or missing value: %s", a);
+            return cli_usage_error("ref", "unexpected argument '%s'", a);
         else if (!scene_path)
             scene_path = a;
         else
-            return cli_usage_error("ref", "more than one SCENE: %s", a);
+            return cli_usage_error("ref", "unexpected argument '%s'", a);
     }
-    if (!scene_path)
-        return cli_usage_error("ref", "expected a SCENE argument");
-    if (!out_path)
-        return cli_usage_error("ref", "expected -o OUT.png");
+    if (!scene_path || !out_path)
+        return cli_usage_error("ref", "needs SCENE and -o OUT.png");
+    int bad = cli_check_png_name("ref", out_path);
+    if (bad)
+        return bad;
     char aov_path[1024];
     cli_aov_path(out_path, aov_path, sizeof aov_path);
-    if (!strcmp(aov_path, out_path))
-        return cli_usage_error("ref", "OUT '%s' would be overwritten by its own AOV file; "
-                               "use a .png name", out_path);
 
     sc_error err = {0};
-    sc_camera_desc view = {.width = width, .height = height, .text = camera_text};
-    if (sc_check_camera(&view, &err) != SC_OK)
-        return cli_usage_error("ref", "%s", err.message);
+    sc_camera_desc view;
+    if ((bad = cli_view_camera("ref", &view_opts, &view)) != 0)
+        return bad;
     sc_scene_id scene;
-    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
-        return cli_report(&err);
+    if (cli_open_drawable_scene("ref", scene_path, &scene))
+        return 1;
     double t0 = sc_now();
     sc_reference_desc desc = {.threads = threads};
-    if ((long)width * height > 256L * 256L) {
+    if ((long)view.width * view.height > 256L * 256L) {
         desc.progress = print_progress;
         desc.progress_user = &t0;
     }
@@ -126,8 +108,8 @@ int cmd_ref(int argc, char **argv)
     if (status != SC_OK)
         return cli_report(&err);
     const sc_reference_stats *stats = &info.reference;
-    printf("ref image=%s aov=%s size=%dx%d camera=%s hit_pixels=%ld\n", out_path, aov_path, width,
-           height, info.camera, stats->hits);
+    printf("ref image=%s aov=%s size=%dx%d camera=%s hit_pixels=%ld\n", out_path, aov_path,
+           info.width, info.height, info.camera, stats->hits);
     if (want_stats)
         printf("stats rays=%ld hits=%ld seconds=%.3f rays_per_s=%.0f subdivisions_per_ray=%.1f "
                "over_budget=%ld threads=%d\n",

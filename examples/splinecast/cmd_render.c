@@ -1,7 +1,7 @@
 /* cmd_render.c — `splinecast render SCENE -o out.png`: ray casts the scene
  * on the GPU (EGL or OSMesa) with the generated programs, writes the image
- * and its AOV file, prints one `stats` line and, with --ref, the accuracy
- * against the CPU reference for the same view. */
+ * (and with --aov its AOV file), prints one `stats` line and, with --ref,
+ * the accuracy against the CPU reference for the same view. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,18 +9,18 @@
 #include "commands.h"
 #include "options.h"
 #include "splinecast.h"
+#include "view_options.h"
 
 static const char usage[] =
     "usage: splinecast render SCENE -o OUT.png [options]\n"
     "\n"
-    "Ray casts SCENE on the GPU and writes OUT.png and its AOVs (OUT.aov: surface\n"
-    "id, (u, v), distance, point, normal and Newton iterations per pixel).\n"
+    "Ray casts SCENE on the GPU and writes OUT.png; with --aov FILE also its AOVs\n"
+    "(surface id, (u, v), distance, point, normal and iterations per pixel).\n"
     "\n"
     "options:\n"
     "  --backend egl|osmesa   GL context (default: EGL, falling back to OSMesa)\n"
-    "  --size WxH             image size (default 512x512)\n"
-    "  --camera EX,EY,EZ,TX,TY,TZ,FOVY   eye, target, vertical field of view in\n"
-    "                         degrees (default: framing the scene)\n"
+    "%s"
+    "  --aov FILE             also write the AOV file (docs/aov-format.md)\n"
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --tol PX               Newton tolerance in pixel footprints (default 0.05)\n"
     "  --hull uniform:N|adaptive:TOL   proxy hulls: N x N per Bezier patch, or\n"
@@ -48,6 +48,7 @@ static const char usage[] =
     "                         (default 32)\n"
     "  --frames N             frames timed after a warm-up frame (default 5)\n"
     "  --ref                  also render the CPU reference and print its accuracy\n"
+    "                         (progress on stderr)\n"
     "\n"
     "stdout: stats programs=N hulls=N triangles=N gpu_bytes=N compile_ms=T frame_ms=T\n"
     "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
@@ -57,45 +58,38 @@ static const char usage[] =
     "        and with --ref: accuracy coverage_pct=... fail_pct=... (see diff)\n"
     "        then program KEY for each program compiled, in order of first use\n";
 
-static int parse_size(const char *text, int *w, int *h)
+static void print_progress(double fraction, void *user)
 {
-    char *end;
-    long a = strtol(text, &end, 10);
-    if (end == text || (*end != 'x' && *end != 'X'))
-        return 0;
-    const char *second = end + 1;
-    long b = strtol(second, &end, 10);
-    if (end == second || *end || a < 1 || b < 1 || a > 16384 || b > 16384)
-        return 0;
-    *w = (int)a;
-    *h = (int)b;
-    return 1;
+    double t0 = *(const double *)user;
+    fprintf(stderr, "render: reference %3.0f%% (%.1f s)\n", 100.0 * fraction, sc_now() - t0);
 }
 
 int cmd_render(int argc, char **argv)
 {
     if (cli_wants_help(argc, argv)) {
-        fputs(usage, stdout);
+        printf(usage, cli_view_usage);
         return 0;
     }
-    const char *scene_path = NULL, *out_path = NULL, *camera_arg = NULL;
+    const char *scene_path = NULL, *out_path = NULL, *aov_path = NULL;
+    cli_view view_opts;
+    cli_view_init(&view_opts);
     sc_context_desc ctx_desc = {0};
     sc_renderer_desc desc = {0};
-    int width = 512, height = 512, frames = 5, with_ref = 0;
+    int frames = 5, with_ref = 0;
     sc_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-o") && next) {
+        int taken = cli_view_option("render", argc, argv, &i, &view_opts);
+        if (taken == 2)
+            return 2;
+        if (taken) {
+        } else if (!strcmp(a, "-o") && next) {
             out_path = argv[++i];
+        } else if (!strcmp(a, "--aov") && next) {
+            aov_path = argv[++i];
         } else if (!strcmp(a, "--backend") && next) {
             if (cli_backend_parse(argv[++i], &ctx_desc.backend, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
-        } else if (!strcmp(a, "--size") && next) {
-            if (!parse_size(argv[++i], &width, &height))
-                return cli_usage_error("render", "--size takes WxH (e.g. 256x256), not '%s'",
-                                       argv[i]);
-        } else if (!strcmp(a, "--camera") && next) {
-            camera_arg = argv[++i];
         } else if (!strcmp(a, "--iters") && next) {
             char *end;
             long n = strtol(argv[++i], &end, 10);
@@ -156,15 +150,17 @@ int cmd_render(int argc, char **argv)
     }
     if (!scene_path || !out_path)
         return cli_usage_error("render", "needs SCENE and -o OUT.png");
-
-    sc_camera_desc view = {.width = width, .height = height, .text = camera_arg};
+    sc_camera_desc view;
+    int bad = cli_check_png_name("render", out_path);
+    if (!bad)
+        bad = cli_view_camera("render", &view_opts, &view);
+    if (!bad && aov_path && !strcmp(aov_path, out_path))
+        bad = cli_usage_error("render", "--aov and -o name the same file '%s'", out_path);
+    if (bad)
+        return bad;
     sc_scene_id scene;
-    if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
-        return cli_report(&err);
-    if (camera_arg && sc_check_camera(&view, &err) != SC_OK) {
-        sc_destroy_scene(scene);
-        return cli_usage_error("render", "--camera: %s", err.message);
-    }
+    if (cli_open_drawable_scene("render", scene_path, &scene))
+        return 1;
 
     int status = 1;
     sc_context_id ctx = {0};
@@ -175,8 +171,6 @@ int cmd_render(int argc, char **argv)
     sc_frame_info ref_info;
     sc_comparison acc;
     double *times = calloc((size_t)frames, sizeof(double));
-    char aov_path[1024];
-    cli_aov_path(out_path, aov_path, sizeof aov_path);
     if (sc_make_context(&ctx_desc, &ctx, &err) != SC_OK ||
         sc_query_context_info(ctx, &ctx_info, &err) != SC_OK) {
         cli_report(&err);
@@ -203,12 +197,13 @@ int cmd_render(int argc, char **argv)
     }
     double frame_ms = cli_median(times, frames);
     if (sc_read_frame(renderer, &frame, &err) != SC_OK ||
-        sc_save_aov(frame, aov_path, &err) != SC_OK) {
+        (aov_path && sc_save_aov(frame, aov_path, &err) != SC_OK)) {
         cli_report(&err);
         goto done;
     }
     if (sc_save_png(frame, out_path, &err) != SC_OK) {
-        remove(aov_path);
+        if (aov_path)
+            remove(aov_path); /* the pair is written whole or not at all */
         cli_report(&err);
         goto done;
     }
@@ -223,7 +218,9 @@ int cmd_render(int argc, char **argv)
            stats.draw_calls, stats.program_switches, stats.culled_hulls, stats.readbacks);
     fflush(stdout);
     if (with_ref) {
-        if (sc_render_reference(scene, &view, NULL, &ref, &err) != SC_OK ||
+        double ref_t0 = sc_now();
+        sc_reference_desc ref_desc = {.progress = print_progress, .progress_user = &ref_t0};
+        if (sc_render_reference(scene, &view, &ref_desc, &ref, &err) != SC_OK ||
             sc_query_frame_info(ref, &ref_info, &err) != SC_OK) {
             cli_report(&err);
             goto done;

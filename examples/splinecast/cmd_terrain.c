@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "options.h"
 #include "splinecast.h"
+#include "view_options.h"
 
 static const char usage[] =
     "usage: splinecast terrain (HEIGHTS.pgm|HEIGHTS.csv|--franke N) -o OUT.png [options]\n"
@@ -146,6 +147,8 @@ int cmd_terrain(int argc, char **argv)
     if (!(sdesc.heights || sdesc.franke) || (sdesc.heights && sdesc.franke) || !out_path)
         return cli_usage_error("terrain", "needs HEIGHTS or --franke N (one of them) and "
                                "-o OUT.png");
+    if (cli_check_png_name("terrain", out_path))
+        return 2;
 
     int status = 1;
     sc_scene_id scene = {0};

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "splinecast.h"
 
 static const command commands[] = {
     {"info", cmd_info, "what a scene holds and which variant keys it needs"},
@@ -17,6 +18,7 @@ static const command commands[] = {
     {"bench", cmd_bench, "speed of the GPU path: frame time, fill rate, iterations"},
     {"terrain", cmd_terrain, "ray cast the quartic spline of a height grid on the GPU"},
     {"splines", cmd_splines, "the quartic spline of a height grid; Table I error"},
+    {"pick", cmd_pick, "the surface, (u, v), point and normal under an image point"},
 };
 
 static void usage(FILE *f)
@@ -25,6 +27,7 @@ static void usage(FILE *f)
                "Ray casts trimmed NURBS and spline surfaces on the GPU.\n\ncommands:\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "\n  --version  print the version\n");
     fprintf(f, "\nA SCENE is a .bpt, .obj or .igs/.iges file, or `teapot` for the "
                "embedded 32-patch teapot.\n");
 }
@@ -34,6 +37,10 @@ int main(int argc, char **argv)
     if (argc < 2) {
         usage(stderr);
         return 2;
+    }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version")) {
+        printf("splinecast %s\n", SPLINECAST_VERSION);
+        return 0;
     }
     if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
         usage(stdout);

@@ -413,6 +413,12 @@ int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err)
     return SC_OK;
 }
 
+int sc_gl_context_is_current(const sc_gl_context *ctx)
+{
+    /* OSMesa keeps no cheap way to ask here: its make-current is cheap. */
+    return ctx->backend == SC_BACKEND_EGL && eglGetCurrentContext() == ctx->egl_context;
+}
+
 const sc_gl *sc_gl_context_gl(const sc_gl_context *ctx) { return &ctx->gl; }
 
 sc_backend sc_gl_context_backend(const sc_gl_context *ctx) { return ctx->backend; }

@@ -21,6 +21,9 @@ typedef struct sc_gl_context sc_gl_context;
 int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
                          sc_error *err);
 void sc_gl_context_destroy(sc_gl_context *ctx);
+/* 1 when ctx is the thread's current context in fact (a program's own
+ * window context may have been made current since the library's). */
+int sc_gl_context_is_current(const sc_gl_context *ctx);
 int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err);
 
 const sc_gl *sc_gl_context_gl(const sc_gl_context *ctx);

@@ -16,6 +16,7 @@
 #include "programs.h"
 #include "shader_contract.h"
 #include "tri_prisms.h"
+#include "view_legend.h"
 
 /* The attachments the programs write: the contract's fragment outputs
  * that the view's keys declare, at their locations. */
@@ -512,6 +513,9 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
         else
             grey_view(a, a->t, 1, 0, img);
     }
+    /* One background for every view, and a legend. */
+    if (status == SC_OK && img && img->pixels)
+        sc_view_finish(r->desc.view, a, r->scene->nsurfaces ? r->keys[0].max_iters : 1, img);
     if (!aov || status != SC_OK)
         sc_aov_free(a);
     return status;

@@ -62,7 +62,13 @@ int sc_gl_target_create(const sc_gl *gl, const sc_gl_target_desc *desc,
     GLenum status = gl->CheckNamedFramebufferStatus(target->framebuffer, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         sc_gl_target_destroy(gl, target);
-        return sc_fail(err, NULL, 0, "framebuffer incomplete (status 0x%x)", status);
+        /* Each texture is allocated here: an attachment left incomplete
+         * is nearly always one the driver had no memory for. */
+        return sc_fail(err, NULL, 0, "a %dx%d framebuffer is incomplete (status 0x%x%s): "
+                       "the image is too large for this driver; try a smaller size",
+                       desc->width, desc->height, status,
+                       status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT ?
+                           ", an attachment the driver could not allocate" : "");
     }
     if (sc_gl_check(gl, "creating the framebuffer", err) != SC_OK) {
         sc_gl_target_destroy(gl, target);

@@ -243,11 +243,16 @@ typedef struct sc_keys_desc {
                                   above SC_MAX_DEGREE) gets no key and a
                                   warning through the logger, instead of
                                   failing the call */
-    const char *like;          /* a key whose evaluation form (nurbs or
-                                  Bezier), start, iterations, tolerance,
-                                  early ray termination (its ertN as it is)
-                                  and outputs the keys take where the fields
-                                  above are zero (`gen --like`) */
+    const char *like;          /* a key whose fields the keys take where
+                                  the fields above are zero (`gen --like`):
+                                  all but those each surface decides (kind,
+                                  degrees, rationality, loop where a degree
+                                  needs it, trimmed or not and the trim
+                                  degree). So: nurbs or Bezier, bern, the
+                                  trim method and cap, method, start,
+                                  iterations, tolerance, ertN as it is and
+                                  outputs. bern with nurbs_direct fails,
+                                  naming the field and the key */
     sc_method method;          /* intersection method (hybrid; like's), as
                                   sc_renderer_desc.method */
 } sc_keys_desc;
@@ -338,6 +343,13 @@ typedef struct sc_audit_text {
  * not an audit line, or a shader audited twice, fails with name:line. */
 int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, FILE *out,
                       sc_error *err);
+/* The same, pairing shaders whose keys are equal once the fields that
+ * ignore_fields names (comma-separated: shape, rational, eval, trim, method,
+ * start, iters, tol, ert, out) are left out, so that an option change can
+ * be compared (`audit --compare --match`); NULL pairs equal keys. Fails,
+ * naming them, when two shaders of one audit match the same one. */
+int sc_compare_audits_matching(const sc_audit_text *before, const sc_audit_text *after,
+                               const char *ignore_fields, FILE *out, sc_error *err);
 
 /* ---- GL contexts and runtime specialization ---------------------------- */
 
@@ -445,14 +457,21 @@ typedef struct sc_renderer_info {
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
 
 /* A pinhole view. Zero means default: eye and target both zero frame the
- * scene's bounding box, fovy_deg 0 is 30 degrees, width and height 0 are
- * 512. +z is up unless the view is along z (then +y). */
+ * scene (the control points of untrimmed surfaces, the kept region of
+ * trimmed ones), fovy_deg 0 is 30 degrees, width and height 0 are 512.
+ * up zero: +z is up unless the view is along z (then +y). */
 typedef struct sc_camera_desc {
     double eye[3], target[3];
     double fovy_deg;
     int width, height;
-    const char *text;          /* "EX,EY,EZ,TX,TY,TZ,FOVY" instead of eye,
-                                  target and fovy_deg */
+    const char *text;          /* "EX,EY,EZ,TX,TY,TZ,FOVY[,UX,UY,UZ]" instead
+                                  of eye, target, fovy_deg (and up) */
+    double up[3];              /* the up vector (where the view runs along
+                                  it, the zero rule) */
+    double from[3];            /* with the default framing: the direction
+                                  from the target towards the eye (zero: a
+                                  3/4 view from the front left and above,
+                                  "above" along up) */
 } sc_camera_desc;
 
 /* Checks a view without a scene: its text parses, its size is in range,
@@ -510,7 +529,7 @@ typedef struct sc_frame_info {
     const float *normal;       /* 3 per pixel, unit, facing the viewer */
     const float *iters;        /* iterations; NULL for reference frames */
     double render_ms;          /* drawing and reading back, or the reference */
-    char camera[192];          /* "EX,EY,EZ,TX,TY,TZ,FOVY" with 17 digits:
+    char camera[320];          /* "EX,EY,EZ,TX,TY,TZ,FOVY[,UX,UY,UZ]" with 17 digits:
                                   parses back to the same view */
     sc_reference_stats reference;  /* zero unless from sc_render_reference */
 } sc_frame_info;
@@ -542,6 +561,34 @@ typedef struct sc_comparison {
 /* Fails when the two frames differ in size or camera. */
 int sc_compare_frames(sc_frame_id reference, sc_frame_id test, sc_comparison *out,
                       sc_error *err);
+
+/* ---- picking (runtime/api_pick.c, docs/api.md) ------------------------ */
+
+typedef struct sc_pick_result {
+    int hit;                   /* 0: nothing under the point */
+    int surface;               /* 0-based index, as sc_query_surface_info and
+                                  sc_eval_surface take it; -1 for a miss */
+    double u, v;               /* in the surface's own knot range:
+                                  sc_eval_surface(u, v) gives point */
+    double point[3];           /* world space */
+    double normal[3];          /* unit, world space, facing the viewer */
+    double t;                  /* distance from the eye along the unit ray */
+    /* How it was found: */
+    int gpu_surface;           /* the frame's surface id at the pixel (-1) */
+    double gpu_u, gpu_v;       /* the frame's float (u, v) there */
+    int newton_iters;          /* double-precision Newton steps from it */
+    int by_reference;          /* 1: the CPU reference traced the ray
+                                  (Newton left the surface's kept region:
+                                  a silhouette, a trim edge) */
+} sc_pick_result;
+
+/* What lies under image point (x, y) of the renderer's last frame
+ * (sc_draw first): x a column and y a row from the top left, in pixels,
+ * pixel centres at +0.5. The frame's AOVs give the surface and a float
+ * (u, v); Newton's method on the ray against the surface's NURBS refines
+ * them in double precision. A pixel the frame did not hit is a miss.
+ * Fails for a point outside the frame. */
+int sc_pick(sc_renderer_id renderer, double x, double y, sc_pick_result *out, sc_error *err);
 
 #ifdef __cplusplus
 }

@@ -204,8 +204,12 @@ int sc_write_obj(const char *path, const sc_scene *scene, sc_error *err)
         sc_out_abandon(&obj);
         goto done;
     }
-    if (sc_out_rename(&obj, err))
+    if (sc_out_rename(&obj, err)) {
+        /* An .mtl without the .obj that names it is a half-written result
+         * (say, OUT.obj is a folder): take it back. */
+        remove(mtl_path);
         goto done;
+    }
     status = SC_OK;
 done:
     free(colours);

@@ -42,54 +42,103 @@ static void normalize3(double v[3])
 
 int sc_camera_parse(const char *text, sc_camera *cam, sc_error *err)
 {
-    double values[7];
+    double values[10];
     const char *p = text;
-    for (int k = 0; k < 7; k++) {
+    int n = 7;
+    for (int k = 0; k < n; k++) {
         char *end;
         errno = 0;
         values[k] = strtod(p, &end);
         if (end == p || errno == ERANGE || !isfinite(values[k]))
             return sc_fail(err, NULL, 0,
                            "camera '%s': value %d is not a finite number "
-                           "(expected EX,EY,EZ,TX,TY,TZ,FOVY)", text, k + 1);
+                           "(expected EX,EY,EZ,TX,TY,TZ,FOVY[,UX,UY,UZ])", text, k + 1);
         p = end;
         while (*p == ' ')
             p++;
-        if (k < 6) {
+        if (k == 6 && *p == ',')
+            n = 10; /* an up vector follows */
+        if (k < n - 1) {
             if (*p != ',')
                 return sc_fail(err, NULL, 0,
                                "camera '%s': expected 7 comma-separated numbers "
-                               "EX,EY,EZ,TX,TY,TZ,FOVY", text);
+                               "EX,EY,EZ,TX,TY,TZ,FOVY, or 10 with UX,UY,UZ", text);
             p++;
         }
     }
     if (*p != '\0')
-        return sc_fail(err, NULL, 0, "camera '%s': unexpected text after the 7 numbers",
-                       text);
+        return sc_fail(err, NULL, 0, "camera '%s': unexpected text after the %d numbers",
+                       text, n);
     if (!(values[6] > 0.0 && values[6] < 180.0))
         return sc_fail(err, NULL, 0, "camera '%s': field of view %g is not in (0, 180) degrees",
                        text, values[6]);
     if (values[0] == values[3] && values[1] == values[4] && values[2] == values[5])
         return sc_fail(err, NULL, 0, "camera '%s': eye and target are the same point", text);
+    if (n == 10 && values[7] == 0 && values[8] == 0 && values[9] == 0)
+        return sc_fail(err, NULL, 0, "camera '%s': the up vector is zero", text);
     memcpy(cam->eye, values, 3 * sizeof(double));
     memcpy(cam->target, values + 3, 3 * sizeof(double));
     cam->fovy_deg = values[6];
+    if (n == 10)
+        memcpy(cam->up, values + 7, 3 * sizeof(double));
     return SC_OK;
+}
+
+static int has_up(const sc_camera *cam)
+{
+    return cam->up[0] != 0 || cam->up[1] != 0 || cam->up[2] != 0;
 }
 
 void sc_camera_format(const sc_camera *cam, char *buf, size_t size)
 {
-    snprintf(buf, size, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", cam->eye[0], cam->eye[1],
-             cam->eye[2], cam->target[0], cam->target[1], cam->target[2], cam->fovy_deg);
+    int n = snprintf(buf, size, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", cam->eye[0],
+                     cam->eye[1], cam->eye[2], cam->target[0], cam->target[1], cam->target[2],
+                     cam->fovy_deg);
+    if (has_up(cam) && n > 0 && (size_t)n < size)
+        snprintf(buf + n, size - (size_t)n, ",%.17g,%.17g,%.17g", cam->up[0], cam->up[1],
+                 cam->up[2]);
+}
+
+/* The default direction {1, -2, 1.2} is given for +z up; for another up it
+ * is turned so that its third component runs along that up (and x stays
+ * x where it can), so that a y-up model is seen from the front, above. */
+static void default_direction_for(const sc_camera *cam, double dir[3])
+{
+    double e3[3] = {0, 0, 1}, e1[3] = {1, 0, 0}, e2[3];
+    if (has_up(cam)) {
+        memcpy(e3, cam->up, sizeof e3);
+        normalize3(e3);
+        double ref[3] = {1, 0, 0};
+        if (fabs(e3[0]) > 0.9)
+            ref[0] = 0, ref[1] = 1;
+        double d = dot3(ref, e3);
+        for (int k = 0; k < 3; k++)
+            e1[k] = ref[k] - d * e3[k];
+        normalize3(e1);
+    }
+    cross3(e3, e1, e2);
+    for (int k = 0; k < 3; k++)
+        dir[k] = default_direction[0] * e1[k] + default_direction[1] * e2[k] +
+                 default_direction[2] * e3[k];
 }
 
 void sc_camera_default(const sc_scene *scene, sc_camera *cam)
 {
+    memset(cam->up, 0, sizeof cam->up);
+    sc_camera_default_from(scene, NULL, cam);
+}
+
+void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_camera *cam)
+{
     double lo[3], hi[3];
-    double dir[3] = {default_direction[0], default_direction[1], default_direction[2]};
+    double dir[3];
+    if (from && (from[0] != 0 || from[1] != 0 || from[2] != 0))
+        memcpy(dir, from, sizeof dir);
+    else
+        default_direction_for(cam, dir);
     normalize3(dir);
     cam->fovy_deg = default_fovy_deg;
-    if (!scene || !sc_scene_bounds(scene, lo, hi)) {
+    if (!scene || !sc_scene_view_bounds(scene, lo, hi)) {
         /* Nothing to frame: look at the unit cube around the origin. */
         for (int k = 0; k < 3; k++) {
             lo[k] = -1.0;
@@ -115,9 +164,14 @@ void sc_camera_frame(const sc_camera *cam, double forward[3], double right[3], d
     double f[3] = {cam->target[0] - cam->eye[0], cam->target[1] - cam->eye[1],
                    cam->target[2] - cam->eye[2]};
     normalize3(f);
-    /* +z up, unless the view is (nearly) along z: then +y. */
+    /* The camera's up; by default (or when the view runs along it) +z up,
+     * unless the view is (nearly) along z: then +y. */
     double world_up[3] = {0.0, 0.0, 1.0};
-    if (fabs(f[2]) > 1.0 - 1e-9)
+    double given[3] = {cam->up[0], cam->up[1], cam->up[2]};
+    normalize3(given);
+    if (has_up(cam) && fabs(dot3(f, given)) < 1.0 - 1e-9)
+        memcpy(world_up, given, sizeof world_up);
+    else if (fabs(f[2]) > 1.0 - 1e-9)
         world_up[1] = 1.0, world_up[2] = 0.0;
     double r[3], u[3];
     cross3(f, world_up, r);

@@ -50,6 +50,8 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->eval = SCG_EVAL_LOOP;
         key->deg_u = key->deg_v = 0;
     }
+    if (opts->eval_basis && kind == SCG_PATCH_BEZIER && key->eval == SCG_EVAL_DC)
+        key->eval = SCG_EVAL_BASIS;
     key->rational = s->rational != 0;
     int untrimmed = opts->ignore_trims || opts->trim_method == SC_TRIM_NONE;
     int tdeg = untrimmed ? 0 : sc_surface_trim_degree(s);

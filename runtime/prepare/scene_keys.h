@@ -61,6 +61,10 @@ typedef struct sc_key_options {
      * max_iters is the subdivision stack depth (0:
      * SCG_DEFAULT_SUBDIV_DEPTH). */
     sc_method method;
+    /* 1: Bézier keys that would be unrolled de Casteljau (dc) are
+     * Bernstein sums (bern) instead, as `gen --like` with a bern key asks;
+     * keys of other kinds and the generic program's are left as they are. */
+    int eval_basis;
 } sc_key_options;
 
 /* SC_OK when the GPU programs can draw surface i of the scene. Otherwise

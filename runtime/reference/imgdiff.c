@@ -27,6 +27,13 @@ static int same_camera(const sc_camera *a, const sc_camera *b)
     for (int k = 0; k < 3; k++)
         if (fabs(a->eye[k] - b->eye[k]) > tol || fabs(a->target[k] - b->target[k]) > tol)
             return 0;
+    /* The up each view resolves to, so that an explicit +z equals none. */
+    double fa[3], ra[3], ua[3], fb[3], rb[3], ub[3];
+    sc_camera_frame(a, fa, ra, ua);
+    sc_camera_frame(b, fb, rb, ub);
+    for (int k = 0; k < 3; k++)
+        if (fabs(ua[k] - ub[k]) > 1e-9)
+            return 0;
     return fabs(a->fovy_deg - b->fovy_deg) <= 1e-9 * a->fovy_deg;
 }
 
