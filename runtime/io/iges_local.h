@@ -24,7 +24,7 @@ enum section { SEC_S, SEC_G, SEC_D, SEC_P, SEC_T, SEC_COUNT };
 static const char section_letters[SEC_COUNT] = {'S', 'G', 'D', 'P', 'T'};
 
 /* What building a trim loop can end in besides SC_FAIL / SC_OK. */
-enum { LOOP_NO_PCURVE = 1, LOOP_UNSUPPORTED = 2 };
+enum { LOOP_NO_PCURVE = 1, LOOP_UNSUPPORTED = 2, LOOP_OFF_SURFACE = 3 };
 
 typedef struct record {
     const char *text;
@@ -33,7 +33,7 @@ typedef struct record {
 } record;
 
 typedef struct entity {
-    int type, pdata, xform, color, nlines, subscript;
+    int type, pdata, xform, color, nlines, subscript, form;
     char label[9];
     int line;                 /* file line of its first directory record */
     unsigned char busy;       /* on the current conversion path: a revisit is a cycle */
@@ -89,7 +89,8 @@ typedef struct reader {
     parsed_record *parsed;   /* per P record, filled on demand */
     size_t tokenised;        /* characters tokenised so far (bounded, see tokenise_record) */
     sc_budget budget;        /* geometry charged so far (envelope.h) */
-    int warned_no_pcurve, warned_unsupported;
+    int cur_owner;           /* the face being built (for budget messages) */
+    int warned_no_pcurve, warned_unsupported, warned_off_surface, warned_unbounded;
     int unsupported_entity; /* the curve that stopped the last loop */
 } reader;
 
@@ -129,5 +130,33 @@ int iges_trim_curves(reader *r, int e, const double parent[12], int reversed, cu
                        int depth);
 void iges_orient_chain(curve_list *l);
 int iges_read_128(reader *r, int e, sc_surface *s);
+
+/* A surface entity as read (iges_surfaces.c): `nurbs` is its exact NURBS,
+ * or, for the unbounded planes, cylinders and cones, still empty until the
+ * trims say how far it reaches (need_bounds; iges_bound_surface). The
+ * frame is o + x, y, z (z the axis or normal). */
+enum { IGES_BOUND_PLANE = 1, IGES_BOUND_AXIS = 2 };
+typedef struct iges_surface {
+    int type;
+    int need_bounds;
+    double o[3], x[3], y[3], z[3];
+    double radius, slope;   /* cylinder, cone: radius at o, its change along z */
+    sc_surface nurbs;
+} iges_surface;
+
+/* 1: read (sf->nurbs set unless need_bounds); 0: a type not converted;
+ * SC_FAIL. */
+int iges_read_surface(reader *r, int e, iges_surface *sf);
+/* Builds sf->nurbs of a need_bounds surface to cover the model-space
+ * loops (3D curves in its object space). SC_FAIL when they are empty. */
+int iges_bound_surface(iges_surface *sf, const curve_list *loops, int n);
+/* 3D curves on a plane surface to its (u, v): exact (affine). */
+void iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list *out);
+
+/* iges_faces.c: the model-space curves of loop entity e (142, 141, 508)
+ * in loop order, mapped by to_obj into the surface's object space: SC_OK,
+ * LOOP_NO_PCURVE (it has none), LOOP_UNSUPPORTED or SC_FAIL. */
+int iges_loop_model(reader *r, int e, const double to_obj[12], curve_list *out);
+int iges_invert(const double m[12], double out[12]);
 
 #endif

@@ -206,7 +206,8 @@ static int read_directory(reader *r)
             dir_int(r, a, 1, de, "parameter data pointer", &en->pdata) ||
             dir_int(r, a, 6, de, "transformation matrix", &en->xform) ||
             dir_int(r, b, 2, de, "colour", &en->color) ||
-            dir_int(r, b, 3, de, "parameter line count", &en->nlines))
+            dir_int(r, b, 3, de, "parameter line count", &en->nlines) ||
+            dir_int(r, b, 4, de, "form number", &en->form))
             return SC_FAIL;
         /* The subscript is cosmetic: junk there only loses the name suffix. */
         int subscript;
@@ -368,10 +369,10 @@ static void add_domain_loop(sc_surface *s)
     s->loops[0] = outer;
 }
 
-/* Builds the loop whose entity is `e` (142, 141 or 508) and attaches it to
- * the surface, or counts and reports (once per file) why it cannot be.
- * *added is set when the loop was attached. */
-static int attach_loop(reader *r, int owner, int e, int is_hole, sc_surface *s, int *added)
+/* Builds the parameter-space loop whose entity is `e` (142, 141 or 508)
+ * and attaches it to the surface (*added set), or says why it cannot be
+ * (LOOP_NO_PCURVE, LOOP_UNSUPPORTED). */
+static int attach_pcurves(reader *r, int e, int is_hole, sc_surface *s, int *added)
 {
     curve_list l = {0};
     *added = 0;
@@ -389,22 +390,34 @@ static int attach_loop(reader *r, int owner, int e, int is_hole, sc_surface *s, 
             add_loop(s, is_hole, &l);
             *added = 1;
         }
-        iges_list_free(&l);
-        return SC_OK;
     }
     iges_list_free(&l);
-    if (status == SC_FAIL)
-        return SC_FAIL;
+    return status;
+}
+
+/* Counts and reports (once per file and kind) a loop that could not be
+ * built. */
+static void report_loop(reader *r, int owner, int e, int is_hole, int status)
+{
     const char *fate = is_hole ? "the hole is dropped" : "the surface is kept untrimmed";
     char type[32];
     if (status == LOOP_NO_PCURVE) {
         snprintf(type, sizeof type, "iges-%d", r->ent[e].type);
-        sc_scene_skip(r->scene, type, "no-parameter-curve", 1);
+        sc_scene_skip(r->scene, type, "no-curve", 1);
         if (!r->warned_no_pcurve++)
-            sc_log(SC_LOG_WARN, "%s:%d: entity %d (D %d) of surface D %d: a trim loop has only "
-                   "model-space (3D) curves and %s (projecting 3D edges is not supported; "
-                   "further cases are counted in `skipped`, not reported)", r->name,
+            sc_log(SC_LOG_WARN, "%s:%d: entity %d (D %d) of surface D %d: a trim loop has "
+                   "neither parameter-space curves nor model-space curves this reader can use; "
+                   "%s (further cases are counted in `skipped`, not reported)", r->name,
                    r->ent[e].line, r->ent[e].type, 2 * e + 1, 2 * owner + 1, fate);
+    } else if (status == LOOP_OFF_SURFACE) {
+        snprintf(type, sizeof type, "iges-%d", r->ent[e].type);
+        sc_scene_skip(r->scene, type, "off-surface", 1);
+        if (!r->warned_off_surface++)
+            sc_log(SC_LOG_WARN, "%s:%d: entity %d (D %d) of surface D %d: the model-space "
+                   "curves of a trim loop do not lie on the surface (projecting them leaves "
+                   "more than 100 times the tolerance); %s (further cases are counted in "
+                   "`skipped`, not reported)", r->name, r->ent[e].line, r->ent[e].type,
+                   2 * e + 1, 2 * owner + 1, fate);
     } else {
         int u = r->unsupported_entity;
         snprintf(type, sizeof type, "iges-%d", r->ent[u].type);
@@ -414,7 +427,6 @@ static int attach_loop(reader *r, int owner, int e, int is_hole, sc_surface *s, 
                    "(further cases are counted in `skipped`, not reported)", r->name,
                    r->ent[u].line, r->ent[u].type, 2 * u + 1, r->ent[u].type, fate);
     }
-    return SC_OK;
 }
 
 /* ------------------------------------------------------------------ */
@@ -460,8 +472,8 @@ static int finish_surface(reader *r, int owner, int base, sc_surface *s)
     return SC_OK;
 }
 
-/* The 128 a trimmed surface stands on; 0 with a count when it is another
- * surface type (1 when it is a 128). */
+/* The surface a trimmed surface stands on (its type is checked when it is
+ * read). */
 static int base_surface(reader *r, const params *p, int i, int *base)
 {
     if (iges_pointer(r, p, i, base))
@@ -469,16 +481,59 @@ static int base_surface(reader *r, const params *p, int i, int *base)
     if (*base < 0)
         return iges_fail(r, p->entity, iges_line(r, p, i), "its surface pointer (parameter "
                            "%d) is null", i);
-    if (r->ent[*base].type == 128)
-        return 1;
-    char type[32];
-    snprintf(type, sizeof type, "iges-%d", r->ent[p->entity].type);
-    sc_scene_skip(r->scene, type, "unsupported-surface", 1);
-    return 0;
+    return 1;
+}
+
+/* Relative to the surface's size: how far a projected loop may stray from
+ * its 3D curves (a pixel of a whole-part view is about 1e-3). */
+#define PROJECT_TOL 1e-6
+
+/* The diagonal of the control points' box, in object space. */
+static double surface_size(const sc_surface *s)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = 0; k < (size_t)s->nu * s->nv; k++)
+        for (int d = 0; d < 3; d++) {
+            double x = s->cp[4 * k + d] / s->cp[4 * k + 3];
+            lo[d] = fmin(lo[d], x);
+            hi[d] = fmax(hi[d], x);
+        }
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* A loop given in model space into the surface's parameter space: exactly
+ * onto a plane, projected onto anything else. */
+static int attach_model(reader *r, const iges_surface *sf, sc_surface *s, int is_hole,
+                        curve_list *l3)
+{
+    curve_list l = {0};
+    double dev = 0;
+    if (sf->need_bounds == IGES_BOUND_PLANE) {
+        iges_plane_curves(sf, l3, &l);
+    } else {
+        sc_curve *out;
+        int nout;
+        if (sc_project_loop(s, l3->items, l3->n, PROJECT_TOL * surface_size(s), &out, &nout,
+                            &dev))
+            return LOOP_OFF_SURFACE;
+        l.items = out;
+        l.n = l.cap = nout;
+    }
+    if (iges_charge_curves(r, r->cur_owner, &l, 0)) {
+        iges_list_free(&l);
+        return SC_FAIL;
+    }
+    add_loop(s, is_hole, &l);
+    r->scene->projected_loops++;
+    r->scene->projection_dev = fmax(r->scene->projection_dev, dev);
+    return SC_OK;
 }
 
 /* Loops of one trimmed surface: `loops` entities, the first of which is the
- * outer boundary when has_outer. Without a usable outer loop the domain is
+ * outer boundary when has_outer. Parameter-space curves are used on a 128
+ * (whose parameters they are written in); model-space curves otherwise, and
+ * where a 128's loop has none. Without a usable outer loop the domain is
  * the outer boundary. */
 static int build_trimmed(reader *r, int owner, int base, const int *loops, int nloops,
                          int has_outer)
@@ -487,26 +542,82 @@ static int build_trimmed(reader *r, int owner, int base, const int *loops, int n
     if (sc_budget_charge(&r->budget, (size_t)nloops * sizeof(sc_loop), "trimmed surface",
                          r->name, r->ent[owner].line, r->err))
         return SC_FAIL;
-    sc_surface s;
-    if (iges_read_128(r, base, &s))
-        return SC_FAIL;
-    int outer_added = 0;
-    for (int i = 0; i < nloops; i++) {
-        int is_hole = !(has_outer && i == 0), added;
-        if (attach_loop(r, owner, loops[i], is_hole, &s, &added)) {
-            sc_surface_free(&s);
+    iges_surface sf;
+    int kind = iges_read_surface(r, base, &sf);
+    if (kind <= 0) {
+        sc_surface_free(&sf.nurbs);
+        if (kind < 0)
             return SC_FAIL;
+        char type[32];
+        snprintf(type, sizeof type, "iges-%d", r->ent[owner].type);
+        sc_scene_skip(r->scene, type, "unsupported-surface", 1);
+        return SC_OK;
+    }
+    double own[12], to_obj[12];
+    if (iges_xform(r, base, own) || (iges_invert(own, to_obj) &&
+                                     iges_fail(r, base, 0, "singular transformation matrix"))) {
+        sc_surface_free(&sf.nurbs);
+        return SC_FAIL;
+    }
+    r->cur_owner = owner;
+    curve_list *model = sc_alloc((size_t)nloops + 1, sizeof(curve_list));
+    int status = SC_OK, outer_added = 0, any_model = 0;
+    sc_surface *s = &sf.nurbs;
+    for (int i = 0; i < nloops && status == SC_OK; i++) {
+        int is_hole = !(has_outer && i == 0), added = 0;
+        int loop = sf.type == 128 ? attach_pcurves(r, loops[i], is_hole, s, &added)
+                                  : LOOP_NO_PCURVE;
+        if (loop == LOOP_NO_PCURVE) {
+            loop = iges_loop_model(r, loops[i], to_obj, &model[i]);
+            any_model |= loop == SC_OK;
+            if (loop != SC_OK)
+                iges_list_free(&model[i]);
         }
+        if (loop == SC_FAIL)
+            status = SC_FAIL;
+        else if (loop != SC_OK)
+            report_loop(r, owner, loops[i], is_hole, loop);
         outer_added |= added && !is_hole;
     }
-    if (!outer_added && s.nloops > 0)
-        add_domain_loop(&s);
-    sc_surface_unwrap_seams(&s);
-    if (finish_surface(r, owner, base, &s)) {
-        sc_surface_free(&s);
-        return SC_FAIL;
+    if (status == SC_OK && sf.need_bounds && (!any_model || iges_bound_surface(&sf, model,
+                                                                               nloops))) {
+        /* an unbounded plane, cylinder or cone without usable loops */
+        char type[32];
+        snprintf(type, sizeof type, "iges-%d", sf.type);
+        sc_scene_skip(r->scene, type, "unbounded", 1);
+        if (!r->warned_unbounded++)
+            sc_log(SC_LOG_WARN, "%s:%d: entity %d (D %d): an unbounded surface without trim "
+                   "curves that bound it is not drawn (further cases are counted in "
+                   "`skipped`, not reported)", r->name, r->ent[base].line, sf.type, 2 * base + 1);
+        for (int i = 0; i < nloops; i++)
+            iges_list_free(&model[i]);
+        free(model);
+        sc_surface_free(s);
+        return SC_OK;
     }
-    return SC_OK;
+    for (int i = 0; i < nloops && status == SC_OK; i++) {
+        if (model[i].n == 0)
+            continue;
+        int is_hole = !(has_outer && i == 0);
+        int loop = attach_model(r, &sf, s, is_hole, &model[i]);
+        if (loop == SC_FAIL)
+            status = SC_FAIL;
+        else if (loop != SC_OK)
+            report_loop(r, owner, loops[i], is_hole, loop);
+        outer_added |= loop == SC_OK && !is_hole;
+    }
+    for (int i = 0; i < nloops; i++)
+        iges_list_free(&model[i]);
+    free(model);
+    if (status == SC_OK) {
+        if (!outer_added && s->nloops > 0)
+            add_domain_loop(s);
+        sc_surface_unwrap_seams(s);
+        status = finish_surface(r, owner, base, s);
+    }
+    if (status)
+        sc_surface_free(s);
+    return status;
 }
 
 /* Loop entity pointers from parameters first.. (stride apart) checked to
@@ -625,10 +736,17 @@ static void mark_references(reader *r)
     r->err = err;
 }
 
+/* Surface entities: drawn on their own when nothing uses them. */
+static int is_surface_type(int type)
+{
+    return type == 128 || type == 108 || type == 114 || type == 118 || type == 120 ||
+           type == 122 || type == 140 || (type >= 190 && type <= 198 && type % 2 == 0);
+}
+
 static int is_known_type(int type)
 {
-    static const int known[] = {0,   100, 102, 110, 124, 126, 128, 141, 142, 143,
-                                144, 186, 314, 502, 504, 508, 510, 514};
+    static const int known[] = {0,   100, 102, 104, 110, 116, 123, 124, 126, 141,
+                                142, 143, 144, 186, 314, 502, 504, 508, 510, 514};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (known[i] == type)
             return 1;
@@ -645,13 +763,9 @@ static int convert_all(reader *r)
             if (status == SC_OK)
                 status = type == 144 ? convert_144(r, &p)
                          : type == 143 ? convert_143(r, &p) : convert_510(r, &p);
-        } else if (type == 128 && !r->ent[e].referenced) {
-            sc_surface s;
-            status = iges_read_128(r, e, &s);
-            if (status == SC_OK && finish_surface(r, e, e, &s)) {
-                sc_surface_free(&s);
-                status = SC_FAIL;
-            }
+        } else if (is_surface_type(type)) {
+            if (!r->ent[e].referenced)
+                status = build_trimmed(r, e, e, NULL, 0, 0);
         } else if (!is_known_type(type)) {
             char name[32];
             snprintf(name, sizeof name, "iges-%d", type);

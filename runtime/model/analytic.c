@@ -163,6 +163,52 @@ void sc_curve_reparam(sc_curve *c, double t0, double t1)
         c->knots[i] = i == nk - 1 ? t1 : t0 + (c->knots[i] - a) * (t1 - t0) / (b - a);
 }
 
+int sc_curve_join(const sc_curve *curves, int n, sc_curve *out)
+{
+    int p = 0, dim = curves[0].dim, st = dim + 1, total = 1;
+    for (int k = 0; k < n; k++)
+        p = curves[k].degree > p ? curves[k].degree : p;
+    sc_curve *c = sc_alloc((size_t)n, sizeof(sc_curve));
+    double size = 0;
+    for (int k = 0; k < n; k++) {
+        if (curves[k].degree < p)
+            sc_curve_elevate(&curves[k], p - curves[k].degree, &c[k]);
+        else
+            sc_curve_copy(&c[k], &curves[k]);
+        sc_curve_reparam(&c[k], k, k + 1);
+        total += c[k].ncp - 1;
+        for (int i = 0; i < c[k].ncp * st; i++)
+            size = fmax(size, fabs(c[k].cp[i] / c[k].cp[(i / st) * st + dim]));
+    }
+    int status = 0;
+    for (int k = 1; k < n && status == 0; k++) {
+        const double *e = c[k - 1].cp + (size_t)st * (c[k - 1].ncp - 1);
+        double *s = c[k].cp, scale = e[dim] / s[dim];
+        for (int i = 0; i < c[k].ncp * st; i++)
+            c[k].cp[i] *= scale;
+        for (int d = 0; d < dim; d++)
+            if (fabs(e[d] / e[dim] - s[d] / s[dim]) > 1e-6 * (size + 1e-300))
+                status = -1;
+    }
+    if (status == 0) {
+        sc_curve_alloc(out, dim, p, total);
+        int at = 0, kn = 0;
+        for (int k = 0; k < n; k++) {
+            int first = k ? 1 : 0;
+            memcpy(out->cp + (size_t)st * at, c[k].cp + (size_t)st * first,
+                   sizeof(double) * (size_t)st * (c[k].ncp - first));
+            at += c[k].ncp - first;
+            int nk = c[k].ncp + p + 1, from = k ? p + 1 : 0, to = k < n - 1 ? nk - 1 : nk;
+            for (int i = from; i < to; i++)
+                out->knots[kn++] = c[k].knots[i];
+        }
+    }
+    for (int k = 0; k < n; k++)
+        sc_curve_free(&c[k]);
+    free(c);
+    return status;
+}
+
 /* Knots of `from` (interior, with multiplicity) that `to` lacks. */
 static int missing_knots(const sc_curve *to, const sc_curve *from, double *x)
 {

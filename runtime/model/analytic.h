@@ -31,6 +31,12 @@ void sc_extrude(const sc_curve *c, const double d[3], sc_surface *out);
  * mapped linearly), made compatible by degree elevation and knot merging:
  * exact. */
 void sc_ruled(const sc_curve *a, const sc_curve *b, sc_surface *out);
+/* Curves joined end to end into one (C0 at the joints, degree raised to
+ * the highest, each on [k, k + 1], each later curve's homogeneous
+ * coordinates scaled so that the weights agree where it meets the one
+ * before). Returns -1 when an end misses the next start by more than 1e-6
+ * of the curves' size. */
+int sc_curve_join(const sc_curve *curves, int n, sc_curve *out);
 /* The curve's knots mapped linearly onto [t0, t1] (the shape unchanged). */
 void sc_curve_reparam(sc_curve *c, double t0, double t1);
 

@@ -177,16 +177,27 @@ static void push_sample(piece_list *l, const sample *s)
     l->s[l->n++] = *s;
 }
 
-/* Largest deviation of the piece a..b from the curve at three checks. */
-static double piece_dev(proj *pj, const sc_curve *c, const sample *a, const sample *b)
+/* How far the surface at the fitted piece a..b strays from the curve, at
+ * three checks: *total the distance itself (what the loop is off by), the
+ * return value that part of it which refinement can remove (the distance
+ * less the curve's own distance from the surface there, for edges that
+ * a file gives slightly off their surface). */
+static double piece_dev(proj *pj, const sc_curve *c, const sample *a, const sample *b,
+                        double *total)
 {
     double worst = 0;
+    *total = 0;
     for (int k = 1; k <= 3; k++) {
-        double s = 0.25 * k, uv[2], x[3], p[3];
+        double s = 0.25 * k, uv[2], x[3], p[3], near[2];
         hermite(a, b, s, uv);
         sc_curve_eval(c, a->t + s * (b->t - a->t), x, NULL);
         eval(pj, uv, p, NULL, NULL);
-        worst = fmax(worst, dist3(p, x));
+        double d = dist3(p, x);
+        near[0] = uv[0];
+        near[1] = uv[1];
+        double off = newton(pj, x, near);
+        *total = fmax(*total, d);
+        worst = fmax(worst, d - off);
     }
     return worst;
 }
@@ -195,7 +206,7 @@ static double piece_dev(proj *pj, const sc_curve *c, const sample *a, const samp
 static void refine(proj *pj, const sc_curve *c, const sample *a, const sample *b, int depth,
                    piece_list *out)
 {
-    double dev = piece_dev(pj, c, a, b);
+    double total, dev = piece_dev(pj, c, a, b, &total);
     if (dev > pj->tol && depth < MAX_DEPTH) {
         sample m;
         double guess[2];
@@ -205,7 +216,7 @@ static void refine(proj *pj, const sc_curve *c, const sample *a, const sample *b
         refine(pj, c, &m, b, depth + 1, out);
         return;
     }
-    pj->dev = fmax(pj->dev, dev);
+    pj->dev = fmax(pj->dev, total);
     push_sample(out, b);
 }
 
@@ -217,7 +228,7 @@ static void to_curve(const piece_list *l, sc_curve *out)
     sc_curve_alloc(out, 2, 3, 3 * pieces + 1);
     for (int i = 0; i < 4; i++) {
         out->knots[i] = l->s[0].t;
-        out->knots[3 * pieces + i] = l->s[pieces].t;
+        out->knots[3 * pieces + 1 + i] = l->s[pieces].t;
     }
     for (int i = 1; i < pieces; i++)
         for (int k = 0; k < 3; k++)
@@ -269,9 +280,9 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
         const sc_curve *c = &curves[i];
         double t0, t1;
         sc_curve_domain(c, &t0, &t1);
-        /* Start pieces at the curve's knots (a rational arc's quarters) and
-         * at least 8, so that each Newton start lies near its target. */
-        int nk = c->ncp + c->degree + 1, steps = 8;
+        /* At least 8 first pieces, more for a curve of many spans, so that
+         * each Newton start lies near its target. */
+        int steps = 8;
         for (int k = c->degree + 1; k < c->ncp; k++)
             steps += c->knots[k] > c->knots[k - 1];
         steps = steps > 64 ? 64 : steps;
@@ -288,7 +299,6 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
         } else {
             sample_at(&pj, c, t0, prev, &a);
         }
-        (void)nk;
         push_sample(&l, &a);
         for (int k = 1; k <= steps; k++) {
             sample b;
