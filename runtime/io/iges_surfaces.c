@@ -246,9 +246,11 @@ static int read_120(reader *r, const params *p, iges_surface *sf)
         return iges_fail(r, p->entity, 0, "its axis has length 0");
     for (int d = 0; d < 3; d++)
         dir[d] /= len;
-    if (!(ta > sa) || ta - sa > 2 * M_PI + 1e-6)
+    /* Writers give periodic ranges longer than a turn: a whole turn is the
+     * most a surface holds. */
+    if (!(ta > sa))
         return iges_fail(r, p->entity, iges_line(r, p, 3), "rotation from %g to %g: needs "
-                         "0 < TA - SA <= 2 pi", sa, ta);
+                         "TA > SA", sa, ta);
     status = one_curve(r, p, 2, &gen);
     if (status != SC_OK)
         return status;
@@ -357,9 +359,16 @@ int iges_read_surface(reader *r, int e, iges_surface *sf)
             double angle;
             if (iges_real(r, &p, 4, &angle))
                 return SC_FAIL;
-            if (!(fabs(angle) < 89.9))
+            if (!(fabs(angle) < 180))
                 return iges_fail(r, e, iges_line(r, &p, 4), "cone semi-angle %g degrees", angle);
             sf->slope = tan(angle * M_PI / 180);
+            if (fabs(angle) > 89.999) {
+                /* a flat cone: the plane through o across the axis */
+                if (analytic_frame(r, &p, 1, 2, 5, sf))
+                    return SC_FAIL;
+                sf->need_bounds = IGES_BOUND_PLANE;
+                return 1;
+            }
         }
         if (!(sf->radius >= 0))
             return iges_fail(r, e, iges_line(r, &p, 3), "radius %g", sf->radius);

@@ -414,8 +414,8 @@ static void report_loop(reader *r, int owner, int e, int is_hole, int status)
         sc_scene_skip(r->scene, type, "off-surface", 1);
         if (!r->warned_off_surface++)
             sc_log(SC_LOG_WARN, "%s:%d: entity %d (D %d) of surface D %d: the model-space "
-                   "curves of a trim loop do not lie on the surface (projecting them leaves "
-                   "more than 100 times the tolerance); %s (further cases are counted in "
+                   "curves of a trim loop do not lie on the surface (they stray more than "
+                   "1e-3 of its size from it); %s (further cases are counted in "
                    "`skipped`, not reported)", r->name, r->ent[e].line, r->ent[e].type,
                    2 * e + 1, 2 * owner + 1, fate);
     } else {
@@ -485,8 +485,11 @@ static int base_surface(reader *r, const params *p, int i, int *base)
 }
 
 /* Relative to the surface's size: how far a projected loop may stray from
- * its 3D curves (a pixel of a whole-part view is about 1e-3). */
+ * its 3D curves (a pixel of a whole-part view is about 1e-3), and how far
+ * 3D curves may lie from their surface before the loop is refused (CAD
+ * systems approximate intersection edges to about 1e-4). */
 #define PROJECT_TOL 1e-6
+#define PROJECT_OFF_LIMIT 1e-3
 
 /* The diagonal of the control points' box, in object space. */
 static double surface_size(const sc_surface *s)
@@ -514,8 +517,9 @@ static int attach_model(reader *r, const iges_surface *sf, sc_surface *s, int is
     } else {
         sc_curve *out;
         int nout;
-        if (sc_project_loop(s, l3->items, l3->n, PROJECT_TOL * surface_size(s), &out, &nout,
-                            &dev))
+        double size = surface_size(s);
+        if (sc_project_loop(s, l3->items, l3->n, PROJECT_TOL * size, PROJECT_OFF_LIMIT * size,
+                            &out, &nout, &dev))
             return LOOP_OFF_SURFACE;
         l.items = out;
         l.n = l.cap = nout;

@@ -60,10 +60,12 @@ void sc_surface_unwrap_seams(sc_surface *s);
  * extends the surface); where consecutive curves meet in 3D but not in
  * (u, v) (a pole, a seam), a straight segment joins them. *out gets *nout
  * curves (free each, then the array); *dev the largest deviation measured.
- * Work and memory are bounded (at most 4096 pieces per curve). Returns
- * SC_OK, or SC_FAIL when a curve does not lie on the surface (a deviation
- * above 100 tol that refinement cannot remove). */
+ * Work and memory are bounded (at most 4096 pieces per curve). The
+ * distance a curve keeps from the surface (an edge a file gives slightly
+ * off its face) is not refined away but counted in *dev. Returns SC_OK,
+ * or SC_FAIL when *dev passes off_limit: the curves do not lie on the
+ * surface. */
 int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double tol,
-                    sc_curve **out, int *nout, double *dev);
+                    double off_limit, sc_curve **out, int *nout, double *dev);
 
 #endif

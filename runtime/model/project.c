@@ -263,8 +263,38 @@ static void line2(const double a[2], const double b[2], sc_curve *out)
     memcpy(out->cp, cp, sizeof cp);
 }
 
+/* The samples of curve c from `start` (its first point's parameters) on. */
+static void follow(proj *pj, const sc_curve *c, const double start[2], piece_list *l)
+{
+    double t0, t1;
+    sc_curve_domain(c, &t0, &t1);
+    /* At least 8 first pieces, more for a curve of many spans, so that
+     * each Newton start lies near its target. */
+    int steps = 8;
+    for (int k = c->degree + 1; k < c->ncp; k++)
+        steps += c->knots[k] > c->knots[k - 1];
+    steps = steps > 64 ? 64 : steps;
+    sample a;
+    sample_at(pj, c, t0, start, &a);
+    push_sample(l, &a);
+    for (int k = 1; k <= steps; k++) {
+        sample b, last = l->s[l->n - 1];
+        sample_at(pj, c, t0 + (t1 - t0) * k / steps, last.uv, &b);
+        refine(pj, c, &last, &b, 0, l);
+    }
+}
+
+static int closed_curve(const sc_curve *c, double tol)
+{
+    double t0, t1, a[3], b[3];
+    sc_curve_domain(c, &t0, &t1);
+    sc_curve_eval(c, t0, a, NULL);
+    sc_curve_eval(c, t1, b, NULL);
+    return dist3(a, b) <= tol;
+}
+
 int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double tol,
-                    sc_curve **out, int *nout, double *dev)
+                    double off_limit, sc_curve **out, int *nout, double *dev)
 {
     proj pj = {.s = s, .tol = tol};
     sc_surface_domain(s, &pj.dom[0], &pj.dom[1], &pj.dom[2], &pj.dom[3]);
@@ -278,41 +308,51 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
     int status = SC_OK;
     for (int i = 0; i < n && status == SC_OK; i++) {
         const sc_curve *c = &curves[i];
-        double t0, t1;
-        sc_curve_domain(c, &t0, &t1);
-        /* At least 8 first pieces, more for a curve of many spans, so that
-         * each Newton start lies near its target. */
-        int steps = 8;
-        for (int k = c->degree + 1; k < c->ncp; k++)
-            steps += c->knots[k] > c->knots[k - 1];
-        steps = steps > 64 ? 64 : steps;
         piece_list l = {0};
-        sample a;
-        double x0[3];
-        sc_curve_eval(c, t0, x0, NULL);
         if (i == 0) {
-            double uv[2];
-            global(&pj, x0, NULL, uv);
-            sample_at(&pj, c, t0, uv, &a);
-            first[0] = a.uv[0];
-            first[1] = a.uv[1];
-        } else {
-            sample_at(&pj, c, t0, prev, &a);
+            double t0, t1, x0[3];
+            sc_curve_domain(c, &t0, &t1);
+            sc_curve_eval(c, t0, x0, NULL);
+            global(&pj, x0, NULL, first);
+            memcpy(prev, first, sizeof prev);
         }
-        push_sample(&l, &a);
-        for (int k = 1; k <= steps; k++) {
-            sample b;
-            sample_at(&pj, c, t0 + (t1 - t0) * k / steps, l.s[l.n - 1].uv, &b);
-            sample last = l.s[l.n - 1];
-            refine(&pj, c, &last, &b, 0, &l);
+        follow(&pj, c, prev, &l);
+        if (i > 0 && closed_curve(c, tol)) {
+            /* A closed edge (a whole circle) says nothing by its ends about
+             * its direction, and written either way it runs on across the
+             * seam to a different end: the direction that leads back
+             * towards the loop's start is the loop's. */
+            sc_curve rev;
+            piece_list lr = {0};
+            sc_curve_copy(&rev, c);
+            sc_curve_reverse(&rev);
+            follow(&pj, &rev, prev, &lr);
+            const double *e = l.s[l.n - 1].uv, *er = lr.s[lr.n - 1].uv;
+            if (hypot(er[0] - first[0], er[1] - first[1]) < hypot(e[0] - first[0], e[1] - first[1])) {
+                free(l.s);
+                l = lr;
+            } else {
+                free(lr.s);
+            }
+            sc_curve_free(&rev);
         }
-        if (i > 0 && hypot(a.uv[0] - prev[0], a.uv[1] - prev[1]) > 1e-7 * size)
-            line2(prev, a.uv, &(*out)[(*nout)++]);
+        const double *a = l.s[0].uv;
+        /* Newton ends within 1e-7 of the domain of where the last curve
+         * ended: the same point, made exactly so. */
+        if (i > 0 && hypot(a[0] - prev[0], a[1] - prev[1]) > 1e-7 * size)
+            line2(prev, a, &(*out)[(*nout)++]);
+        else
+            memcpy(l.s[0].uv, prev, sizeof prev);
+        if (i == n - 1 && hypot(first[0] - l.s[l.n - 1].uv[0], first[1] - l.s[l.n - 1].uv[1]) <=
+                              1e-7 * size)
+            memcpy(l.s[l.n - 1].uv, first, sizeof first);
+        if (i == 0)
+            memcpy(first, l.s[0].uv, sizeof first);
         to_curve(&l, &(*out)[(*nout)++]);
         prev[0] = l.s[l.n - 1].uv[0];
         prev[1] = l.s[l.n - 1].uv[1];
         free(l.s);
-        if (pj.dev > 100 * tol)
+        if (pj.dev > off_limit)
             status = SC_FAIL;
     }
     if (status == SC_OK && n > 0 && hypot(first[0] - prev[0], first[1] - prev[1]) > 1e-7 * size)
