@@ -161,6 +161,20 @@ int cmd_render(int argc, char **argv)
     sc_scene_id scene;
     if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK)
         return cli_report(&err);
+    /* A file the reader accepted but with nothing in it to draw (only
+     * curves, only skipped entities) is not a picture of an empty scene. */
+    sc_scene_info scene_info;
+    if (sc_query_scene_info(scene, &scene_info, &err) != SC_OK) {
+        sc_destroy_scene(scene);
+        return cli_report(&err);
+    }
+    if (scene_info.surfaces == 0) {
+        fprintf(stderr, "splinecast: %s: nothing to draw: the scene has no surfaces (%d "
+                "entities skipped; `splinecast info` lists them)\n", scene_path,
+                scene_info.skipped);
+        sc_destroy_scene(scene);
+        return 1;
+    }
     if (camera_arg && sc_check_camera(&view, &err) != SC_OK) {
         sc_destroy_scene(scene);
         return cli_usage_error("render", "--camera: %s", err.message);

@@ -16,7 +16,8 @@
 enum {
     MAX_DEPTH = 12,        /* 4096 pieces per curve at most */
     GRID = 24,             /* global search for a start point */
-    NEWTON_STEPS = 40
+    NEWTON_STEPS = 40,
+    MAX_SEAMS = 64         /* seam runs remembered per loop */
 };
 
 typedef struct proj {
@@ -293,6 +294,42 @@ static int closed_curve(const sc_curve *c, double tol)
     return dist3(a, b) <= tol;
 }
 
+/* A loop runs along a closed surface's seam twice (a sphere bounded by
+ * its seam edge, there and back): the two runs lie on the two sides, one
+ * period apart, or the loop would enclose nothing. A curve whose samples
+ * all lie on a seam already used by an earlier curve of the loop is moved
+ * to the other side. */
+static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
+{
+    for (int k = 0; k < 2; k++) {
+        if (!pj->closed[k])
+            continue;
+        double a = pj->dom[2 * k], period = pj->dom[2 * k + 1] - a, eps = 1e-9 * period;
+        double x = l->s[0].uv[k], m = round((x - a) / period);
+        if (fabs(x - (a + m * period)) > eps)
+            continue;
+        int along = 1;
+        for (int i = 1; i < l->n && along; i++)
+            along = fabs(l->s[i].uv[k] - x) <= eps;
+        if (!along)
+            continue;
+        int seen = 0;
+        for (int i = 0; i < *nseams; i++)
+            seen |= seams[2 * i] == k && fabs(seams[2 * i + 1] - x) <= eps;
+        if (seen) {
+            double shift = x - a < 0.5 * period ? period : -period;
+            for (int i = 0; i < l->n; i++)
+                l->s[i].uv[k] += shift;
+            x += shift;
+        }
+        if (*nseams < MAX_SEAMS) {
+            seams[2 * *nseams] = k;
+            seams[2 * *nseams + 1] = x;
+            ++*nseams;
+        }
+    }
+}
+
 int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double tol,
                     double off_limit, sc_curve **out, int *nout, double *dev)
 {
@@ -304,8 +341,8 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
     *out = sc_alloc((size_t)2 * n + 1, sizeof(sc_curve));
     *nout = 0;
     *dev = 0;
-    double prev[2] = {0, 0}, first[2] = {0, 0};
-    int status = SC_OK;
+    double prev[2] = {0, 0}, first[2] = {0, 0}, seams[2 * MAX_SEAMS];
+    int status = SC_OK, nseams = 0;
     for (int i = 0; i < n && status == SC_OK; i++) {
         const sc_curve *c = &curves[i];
         piece_list l = {0};
@@ -336,6 +373,7 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
             }
             sc_curve_free(&rev);
         }
+        seam_side(&pj, &l, seams, &nseams);
         const double *a = l.s[0].uv;
         /* Newton ends within 1e-7 of the domain of where the last curve
          * ended: the same point, made exactly so. */
