@@ -39,6 +39,7 @@ typedef struct entity {
     unsigned char busy;       /* on the current conversion path: a revisit is a cycle */
     unsigned char referenced; /* used as the surface of a 142/144/143/141/510/140 */
     unsigned char has_matrix;
+    unsigned char in_subfigure; /* a member of a 308: drawn through its 408s */
     unsigned char counting;   /* on the current path of count_pieces */
     int pieces;               /* curves it expands into (count_pieces), 0 until counted */
     double matrix[12];        /* its own matrix, for a 124, once parsed */
@@ -90,6 +91,8 @@ typedef struct reader {
     size_t tokenised;        /* characters tokenised so far (bounded, see tokenise_record) */
     sc_budget budget;        /* geometry charged so far (envelope.h) */
     int cur_owner;           /* the face being built (for budget messages) */
+    double instance[12];     /* placement of the subfigure instance being drawn */
+    long instance_visits;    /* members visited through 408 instances */
     int warned_no_pcurve, warned_unsupported, warned_off_surface, warned_unbounded;
     int unsupported_entity; /* the curve that stopped the last loop */
 } reader;

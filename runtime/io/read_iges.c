@@ -446,7 +446,8 @@ static int finish_surface(reader *r, int owner, int base, sc_surface *s)
             return SC_FAIL;
         iges_compose(outer, own, own);
     }
-    memcpy(s->xform, own, sizeof own);
+    /* inside subfigure instances: their placement last */
+    iges_compose(r->instance, own, s->xform);
     float rgb[3];
     int has = iges_color(r, owner, rgb);
     if (has == 0 && owner != base)
@@ -613,6 +614,9 @@ static int build_trimmed(reader *r, int owner, int base, const int *loops, int n
     for (int i = 0; i < nloops; i++)
         iges_list_free(&model[i]);
     free(model);
+    if (status == SC_OK && sf.type != 128)
+        status = sc_budget_charge(&r->budget, sc_surface_bytes(s->deg_u, s->deg_v, s->nu, s->nv),
+                                  "surface", r->name, r->ent[base].line, r->err);
     if (status == SC_OK) {
         if (!outer_added && s->nloops > 0)
             add_domain_loop(s);
@@ -749,32 +753,121 @@ static int is_surface_type(int type)
 
 static int is_known_type(int type)
 {
-    static const int known[] = {0,   100, 102, 104, 110, 116, 123, 124, 126, 141,
-                                142, 143, 144, 186, 314, 502, 504, 508, 510, 514};
+    static const int known[] = {0,   100, 102, 104, 110, 116, 123, 124, 126, 141, 142,
+                                143, 144, 186, 308, 314, 502, 504, 508, 510, 514};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
         if (known[i] == type)
             return 1;
     return 0;
 }
 
+/* One entity that may make surfaces: a face (144, 143, 510) or a
+ * surface nothing else uses. */
+static int convert_entity(reader *r, int e)
+{
+    int type = r->ent[e].type;
+    if (type == 144 || type == 143 || type == 510) {
+        params p;
+        int status = iges_params(r, e, &p);
+        if (status == SC_OK)
+            status = type == 144 ? convert_144(r, &p)
+                     : type == 143 ? convert_143(r, &p) : convert_510(r, &p);
+        return status;
+    }
+    if (is_surface_type(type) && !r->ent[e].referenced)
+        return build_trimmed(r, e, e, NULL, 0, 0);
+    return SC_OK;
+}
+
+/* 308 subfigure definition: DEPTH, NAME, N, DE(N). Its members are drawn
+ * only through 408 instances. */
+static int subfigure_members(reader *r, int e, params *p, int *n)
+{
+    if (iges_params(r, e, p) || iges_need(r, p, 3) || iges_count(r, p, 3, 1, n))
+        return SC_FAIL;
+    return SC_OK;
+}
+
+static void mark_subfigures(reader *r)
+{
+    sc_error *err = r->err;
+    r->err = NULL; /* a broken 308 marks nothing; an instance of it reports it */
+    for (int e = 0; e < r->nent; e++) {
+        params p;
+        int n, m;
+        if (r->ent[e].type != 308 || subfigure_members(r, e, &p, &n))
+            continue;
+        for (int i = 0; i < n; i++)
+            if (iges_pointer(r, &p, 4 + i, &m) == SC_OK && m >= 0)
+                r->ent[m].in_subfigure = 1;
+    }
+    r->err = err;
+}
+
+/* 408 singular subfigure instance: DE (the 308), X, Y, Z, S: the
+ * definition scaled by S, moved by (X, Y, Z), then placed by the 408's own
+ * transformation, inside the placement of any instance it is part of. */
+static int instantiate(reader *r, int e, int depth)
+{
+    entity *en = &r->ent[e];
+    if (en->busy)
+        return iges_fail(r, e, 0, "reference cycle: the subfigure instance contains itself");
+    if (depth > MAX_NESTING)
+        return iges_fail(r, e, 0, "subfigures nested more than %d deep", MAX_NESTING);
+    params p, def;
+    int sub, n;
+    double v[4] = {0, 0, 0, 1}, own[12], outer[12];
+    if (iges_params(r, e, &p) || iges_need(r, &p, 1) || iges_pointer(r, &p, 1, &sub))
+        return SC_FAIL;
+    for (int i = 0; i < 4 && i + 2 <= p.ntok - 1; i++)
+        if (iges_real(r, &p, i + 2, &v[i]))
+            return SC_FAIL;
+    if (p.ntok - 1 < 5 || v[3] == 0)
+        v[3] = 1;
+    if (sub < 0 || r->ent[sub].type != 308)
+        return iges_fail(r, e, iges_line(r, &p, 1), "parameter 1 does not point to a 308 "
+                         "subfigure definition");
+    if (subfigure_members(r, sub, &def, &n) || iges_xform(r, e, own))
+        return SC_FAIL;
+    double place[12] = {v[3], 0, 0, v[0], 0, v[3], 0, v[1], 0, 0, v[3], v[2]};
+    memcpy(outer, r->instance, sizeof outer);
+    iges_compose(own, place, own);
+    iges_compose(outer, own, r->instance);
+    en->busy = 1;
+    int status = SC_OK;
+    for (int i = 0; i < n && status == SC_OK; i++) {
+        int m;
+        status = iges_pointer(r, &def, 4 + i, &m);
+        /* Instances of instances multiply: the members visited in all are
+         * bounded, whatever they hold. */
+        if (status == SC_OK && ++r->instance_visits > SC_MAX_LOOP_PIECES * 16)
+            status = iges_fail(r, e, 0, "subfigure instances expand to more than %d entities "
+                               "(docs/limits.md)", SC_MAX_LOOP_PIECES * 16);
+        if (status == SC_OK && m >= 0)
+            status = r->ent[m].type == 408 ? instantiate(r, m, depth + 1)
+                                           : convert_entity(r, m);
+    }
+    en->busy = 0;
+    memcpy(r->instance, outer, sizeof outer);
+    return status;
+}
+
 static int convert_all(reader *r)
 {
+    mark_subfigures(r);
+    memcpy(r->instance, iges_identity, sizeof r->instance);
     for (int e = 0; e < r->nent; e++) {
         int type = r->ent[e].type, status = SC_OK;
-        if (type == 144 || type == 143 || type == 510) {
-            params p;
-            status = iges_params(r, e, &p);
-            if (status == SC_OK)
-                status = type == 144 ? convert_144(r, &p)
-                         : type == 143 ? convert_143(r, &p) : convert_510(r, &p);
-        } else if (is_surface_type(type)) {
-            if (!r->ent[e].referenced)
-                status = build_trimmed(r, e, e, NULL, 0, 0);
-        } else if (!is_known_type(type)) {
+        if (r->ent[e].in_subfigure)
+            continue;
+        if (type == 408)
+            status = instantiate(r, e, 0);
+        else if (!is_known_type(type) && !is_surface_type(type)) {
             char name[32];
             snprintf(name, sizeof name, "iges-%d", type);
             sc_scene_skip(r->scene, name, "unsupported", 1);
-        }
+        } else
+            status = convert_entity(r, e);
         if (status)
             return SC_FAIL;
     }
