@@ -21,7 +21,6 @@ enum {
 };
 
 enum section { SEC_S, SEC_G, SEC_D, SEC_P, SEC_T, SEC_COUNT };
-static const char section_letters[SEC_COUNT] = {'S', 'G', 'D', 'P', 'T'};
 
 /* What building a trim loop can end in besides SC_FAIL / SC_OK. */
 enum { LOOP_NO_PCURVE = 1, LOOP_UNSUPPORTED = 2, LOOP_OFF_SURFACE = 3 };
@@ -161,5 +160,11 @@ void iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list 
  * LOOP_NO_PCURVE (it has none), LOOP_UNSUPPORTED or SC_FAIL. */
 int iges_loop_model(reader *r, int e, const double to_obj[12], curve_list *out);
 int iges_invert(const double m[12], double out[12]);
+
+/* iges_sections.c: records, the global section (delimiters), the
+ * directory. */
+int iges_read_records(reader *r, const char *text, size_t size);
+int iges_read_global(reader *r);
+int iges_read_directory(reader *r);
 
 #endif
