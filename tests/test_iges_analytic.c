@@ -469,3 +469,68 @@ TEST(iges_render_nothing_drawable)
     free(out);
     free(err);
 }
+
+TEST(iges_parametric_splines_exact)
+{
+    /* A 114 of 2 x 1 bicubic patches (breakpoints u: 0, 1, 3; v: 0, 2)
+     * holding x = u, y = v, z = u^2 v + v^3, and a 112 curve of two
+     * segments (breakpoints 0, 1, 3) holding (t, t^2, t^3 - t), used as a
+     * rail of a ruled surface whose other rail is a line: both exactly. */
+    char p114[4096], p112[1024];
+    int n = snprintf(p114, sizeof p114, "114,3,1,2,1,0.,1.,3.,0.,2.");
+    static const double tu[3] = {0, 1, 3};
+    for (int i = 0; i < 2; i++) {
+        double c[3][16] = {{0}};
+        double a = tu[i];
+        c[0][0] = a;     /* x = a + s */
+        c[0][1] = 1;
+        c[1][4] = 1;     /* y = t */
+        c[2][4] = a * a; /* z = (a + s)^2 t + t^3 */
+        c[2][5] = 2 * a;
+        c[2][6] = 1;
+        c[2][12] = 1;
+        for (int d = 0; d < 3; d++)
+            for (int k = 0; k < 16; k++)
+                n += snprintf(p114 + n, sizeof p114 - (size_t)n, ",%.17g", c[d][k]);
+        for (int k = 0; k < 48; k++) /* the row's unused values */
+            n += snprintf(p114 + n, sizeof p114 - (size_t)n, ",0.");
+    }
+    for (int k = 0; k < 96; k++)
+        n += snprintf(p114 + n, sizeof p114 - (size_t)n, ",0.");
+    snprintf(p114 + n, sizeof p114 - (size_t)n, ";");
+    snprintf(p112, sizeof p112, "112,3,3,3,2,0.,1.,3.,0.,1.,0.,0.,0.,0.,1.,0.,0.,-1.,0.,1.,"
+             "1.,1.,0.,0.,1.,2.,1.,0.,0.,2.,3.,1.,0.,0.,0.,0.,0.,0.,0.,0.,0.,0.,0.,0.;");
+    spec e[] = {
+        {114, p114, 0, 0, NULL},                          /* D 1 */
+        {112, p112, 0, 0, NULL},                          /* D 3 */
+        {110, "110,0.,0.,-5.,3.,0.,-5.;", 0, 0, NULL},    /* D 5 */
+        {118, "118,5,3,0,1;", 0, 0, NULL},                /* D 7 */
+    };
+    sc_scene s;
+    CHECK_INT(iges_read_specs(e, 4, &s), SC_OK);
+    CHECK_INT(s.nsurfaces, 2);
+    const sc_surface *f = &s.surfaces[0];
+    CHECK_INT(f->deg_u, 3);
+    CHECK_INT(f->nu, 7);
+    CHECK_INT(f->nv, 4);
+    for (int j = 0; j <= 10; j++)
+        for (int i = 0; i <= 30; i++) {
+            double u = 3.0 * i / 30, v = 2.0 * j / 10, p[3];
+            sc_surface_eval(f, u, v, p, NULL, NULL);
+            CHECK_NEAR(p[0], u, 1e-14);
+            CHECK_NEAR(p[1], v, 1e-14);
+            CHECK_NEAR(p[2], u * u * v + v * v * v, 1e-13);
+        }
+    const sc_surface *ruled = &s.surfaces[1];
+    for (int i = 0; i <= 30; i++) {
+        double w = i / 30.0, t = 3 * w, p[3];
+        sc_surface_eval(ruled, w, 1, p, NULL, NULL);
+        CHECK_NEAR(p[0], t, 1e-14);
+        CHECK_NEAR(p[1], t * t, 1e-13);
+        CHECK_NEAR(p[2], t * t * t - t, 1e-13);
+        sc_surface_eval(ruled, w, 0, p, NULL, NULL);
+        CHECK_NEAR(p[0], t, 1e-14);
+        CHECK_NEAR(p[2], -5, 1e-14);
+    }
+    sc_scene_free(&s);
+}

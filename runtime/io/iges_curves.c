@@ -139,6 +139,69 @@ static int read_104(reader *r, const params *p, const double m[12], curve_list *
     return LOOP_UNSUPPORTED;
 }
 
+/* Cubic power-basis coefficients c0 + c1 s + c2 s² + c3 s³ on [0, h] as
+ * the four Bézier points of the same cubic: b_k = sum over j <= k of
+ * C(k, j) / C(3, j) · c_j h^j. */
+void iges_power_to_bezier(const double c[4], double h, double b[4])
+{
+    double a[4] = {c[0], c[1] * h, c[2] * h * h, c[3] * h * h * h};
+    b[0] = a[0];
+    b[1] = a[0] + a[1] / 3;
+    b[2] = a[0] + 2 * a[1] / 3 + a[2] / 3;
+    b[3] = a[0] + a[1] + a[2] + a[3];
+}
+
+/* 112 parametric spline curve: CTYPE, H, NDIM, N, T(1..N+1), then per
+ * segment AX BX CX DX AY … DZ (x = AX + BX s + CX s² + DX s³ with
+ * s = t − T(i)): exactly a cubic B-spline with triple knots at the
+ * breakpoints. */
+static int read_112(reader *r, const params *p, const double m[12], curve_list *out)
+{
+    int n;
+    if (iges_need(r, p, 4) || iges_count(r, p, 4, 13, &n))
+        return SC_FAIL;
+    if (n < 1)
+        return iges_fail(r, p->entity, iges_line(r, p, 4), "no segments");
+    double *bp = sc_alloc((size_t)n + 1, sizeof(double));
+    for (int i = 0; i <= n; i++)
+        if (iges_real(r, p, 5 + i, &bp[i])) {
+            free(bp);
+            return SC_FAIL;
+        }
+    for (int i = 0; i < n; i++)
+        if (!(bp[i + 1] > bp[i])) {
+            free(bp);
+            return iges_fail(r, p->entity, iges_line(r, p, 5 + i), "breakpoints do not "
+                             "increase (%.17g, %.17g)", bp[i], bp[i + 1]);
+        }
+    sc_curve *c = iges_list_push(out);
+    sc_curve_alloc(c, list_dim(out), 3, 3 * n + 1);
+    for (int k = 0; k < 4; k++) {
+        c->knots[k] = bp[0];
+        c->knots[3 * n + 1 + k] = bp[n];
+    }
+    for (int i = 1; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            c->knots[3 * i + 1 + k] = bp[i];
+    int at = 6 + n;
+    for (int i = 0; i < n; i++, at += 12) {
+        double b[3][4];
+        for (int d = 0; d < 3; d++) {
+            double coef[4];
+            for (int k = 0; k < 4; k++)
+                if (iges_real(r, p, at + 4 * d + k, &coef[k])) {
+                    free(bp);
+                    return SC_FAIL;
+                }
+            iges_power_to_bezier(coef, bp[i + 1] - bp[i], b[d]);
+        }
+        for (int k = i ? 1 : 0; k < 4; k++)
+            iges_put_point(c, 3 * i + k, m, b[0][k], b[1][k], b[2][k], 1);
+    }
+    free(bp);
+    return SC_OK;
+}
+
 static int read_126(reader *r, const params *p, const double m[12], curve_list *out)
 {
     int e = p->entity, k, deg, prop[4];
@@ -269,7 +332,7 @@ int iges_trim_curves(reader *r, int e, const double parent[12], int reversed, cu
     if (depth > MAX_NESTING)
         return iges_fail(r, e, 0, "composite curves nested more than %d deep", MAX_NESTING);
     if (en->type != 100 && en->type != 102 && en->type != 104 && en->type != 110 &&
-        en->type != 126) {
+        en->type != 112 && en->type != 126) {
         r->unsupported_entity = e;
         return LOOP_UNSUPPORTED;
     }
@@ -287,6 +350,7 @@ int iges_trim_curves(reader *r, int e, const double parent[12], int reversed, cu
     case 110: status = read_110(r, &p, m, out); break;
     case 126: status = read_126(r, &p, m, out); break;
     case 104: status = read_104(r, &p, m, out); break;
+    case 112: status = read_112(r, &p, m, out); break;
     case 102: {
         int count = 0;
         /* Members may repeat: the expansion is counted before it is built. */

@@ -167,4 +167,6 @@ int iges_read_records(reader *r, const char *text, size_t size);
 int iges_read_global(reader *r);
 int iges_read_directory(reader *r);
 
+void iges_power_to_bezier(const double c[4], double h, double b[4]);
+
 #endif

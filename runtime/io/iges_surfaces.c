@@ -317,6 +317,84 @@ static void circle_in(const double c[3], const double x[3], const double z[3], d
     sc_ellipse_arc(3, ctr, x, z, rr, rr, a0, a1, out);
 }
 
+/* 114 parametric spline surface: CTYPE, PTYPE, M, N, TU(M+1), TV(N+1),
+ * then per patch (i over u, j over v, j fastest) 16 coefficients of x,
+ * 16 of y, 16 of z, the one of s^a t^b (s = u − TU(i), t = v − TV(j)) at
+ * 4b + a, and after each row of patches 48 values that are not used.
+ * Exactly a bicubic B-spline with triple knots at the breakpoints. */
+static int read_114(reader *r, const params *p, iges_surface *sf)
+{
+    int m, n, e = p->entity;
+    if (iges_need(r, p, 4) || iges_count(r, p, 3, 49, &m) || iges_count(r, p, 4, 49, &n))
+        return SC_FAIL;
+    if (m < 1 || n < 1)
+        return iges_fail(r, e, iges_line(r, p, 3), "%d x %d patches", m, n);
+    if (iges_need(r, p, 4 + (long long)m + n + 2 + 48LL * m * n) ||
+        sc_budget_charge(&r->budget, sc_surface_bytes(3, 3, 3 * m + 1, 3 * n + 1), "surface",
+                         r->name, iges_line(r, p, 3), r->err))
+        return SC_FAIL;
+    double *tu = sc_alloc((size_t)m + n + 2, sizeof(double)), *tv = tu + m + 1;
+    int status = SC_OK;
+    for (int i = 0; i < m + n + 2 && status == SC_OK; i++)
+        status = iges_real(r, p, 5 + i, &tu[i]);
+    for (int i = 0; i < m && status == SC_OK; i++)
+        if (!(tu[i + 1] > tu[i]))
+            status = iges_fail(r, e, iges_line(r, p, 5 + i), "u breakpoints do not increase");
+    for (int j = 0; j < n && status == SC_OK; j++)
+        if (!(tv[j + 1] > tv[j]))
+            status = iges_fail(r, e, iges_line(r, p, 6 + m + j), "v breakpoints do not increase");
+    if (status) {
+        free(tu);
+        return SC_FAIL;
+    }
+    sc_surface *s = &sf->nurbs;
+    sc_surface_alloc(s, 3, 3, 3 * m + 1, 3 * n + 1);
+    for (int k = 0; k < 4; k++) {
+        s->knots_u[k] = tu[0];
+        s->knots_u[3 * m + 1 + k] = tu[m];
+        s->knots_v[k] = tv[0];
+        s->knots_v[3 * n + 1 + k] = tv[n];
+    }
+    for (int i = 1; i < m; i++)
+        for (int k = 0; k < 3; k++)
+            s->knots_u[3 * i + 1 + k] = tu[i];
+    for (int j = 1; j < n; j++)
+        for (int k = 0; k < 3; k++)
+            s->knots_v[3 * j + 1 + k] = tv[j];
+    int at = 7 + m + n;
+    for (int i = 0; i < m && status == SC_OK; i++) {
+        for (int j = 0; j < n && status == SC_OK; j++, at += 48) {
+            double hu = tu[i + 1] - tu[i], hv = tv[j + 1] - tv[j];
+            for (int d = 0; d < 3 && status == SC_OK; d++) {
+                double c[16], rows[4][4], b[4][4];
+                for (int k = 0; k < 16 && status == SC_OK; k++)
+                    status = iges_real(r, p, at + 16 * d + k, &c[k]);
+                /* along s for each power of t, then along t */
+                for (int pb = 0; pb < 4; pb++)
+                    iges_power_to_bezier(c + 4 * pb, hu, rows[pb]);
+                for (int a = 0; a < 4; a++) {
+                    double col[4] = {rows[0][a], rows[1][a], rows[2][a], rows[3][a]}, out[4];
+                    iges_power_to_bezier(col, hv, out);
+                    for (int bb = 0; bb < 4; bb++)
+                        b[a][bb] = out[bb];
+                }
+                for (int a = 0; a < 4; a++)
+                    for (int bb = 0; bb < 4; bb++) {
+                        double *q = s->cp + 4 * ((size_t)(3 * j + bb) * s->nu + 3 * i + a);
+                        q[d] = b[a][bb];
+                        q[3] = 1;
+                    }
+            }
+        }
+        at += 48; /* the row's unused values */
+    }
+    free(tu);
+    if (status)
+        return SC_FAIL;
+    sc_surface_update_rational(s);
+    return 1;
+}
+
 int iges_read_surface(reader *r, int e, iges_surface *sf)
 {
     memset(sf, 0, sizeof *sf);
@@ -414,6 +492,13 @@ int iges_read_surface(reader *r, int e, iges_surface *sf)
             sc_curve_free(&gen);
         }
         return 1;
+    case 114:
+        if (iges_params(r, e, &p))
+            return SC_FAIL;
+        status = read_114(r, &p, sf);
+        if (status != 1)
+            sc_surface_free(&sf->nurbs);
+        return status;
     case 118:
     case 120:
     case 122:
