@@ -534,3 +534,30 @@ TEST(iges_parametric_splines_exact)
     }
     sc_scene_free(&s);
 }
+
+TEST(iges_offset_surface_fitted)
+{
+    /* A 140 offset of a sphere of radius 2 by 0.5: the fit is another
+     * sphere (radius 2.5 or 1.5, by the normal's side) within the stated
+     * tolerance, and `info` says how far it is from the true offset. */
+    spec e[] = {
+        {116, "116,0.,0.,0.,0;", 0, 0, NULL},       /* D 1 */
+        {196, "196,1,2.;", 0, 0, NULL},             /* D 3 */
+        {140, "140,0.,0.,1.,0.5,3;", 0, 0, NULL},   /* D 5 */
+    };
+    sc_scene s;
+    CHECK_INT(iges_read_specs(e, 3, &s), SC_OK);
+    CHECK_INT(s.nsurfaces, 1); /* the sphere is the 140's base, not drawn */
+    CHECK_INT(s.offset_surfaces, 1);
+    CHECK(s.offset_dev > 0);
+    CHECK(s.offset_dev <= 1e-5 * 8);
+    double p[3], u0, u1, v0, v1;
+    const sc_surface *f = &s.surfaces[0];
+    sc_surface_domain(f, &u0, &u1, &v0, &v1);
+    sc_surface_eval(f, 0.5 * (u0 + u1), 0.5 * (v0 + v1), p, NULL, NULL);
+    double r = sqrt(dot3(p, p));
+    CHECK(fabs(r - 2.5) < 1e-4 || fabs(r - 1.5) < 1e-4);
+    quadric sphere = {{0, 0, 0}, {0, 0, 1}, r < 2 ? 1.5 : 2.5, 0, 0, 1};
+    CHECK(worst_over(f, 40, off_quadric, &sphere) <= s.offset_dev * 1.5);
+    sc_scene_free(&s);
+}

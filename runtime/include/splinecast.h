@@ -93,6 +93,9 @@ typedef struct sc_scene_info {
     double projection_dev;   /* the largest distance measured between such
                                 a loop on its surface and its 3D curves
                                 (object units) */
+    int offset_surfaces;     /* offset surfaces, fitted rather than exact */
+    double offset_dev;       /* the largest distance measured between such a
+                                fit and the true offset (object units) */
 } sc_scene_info;
 
 int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);

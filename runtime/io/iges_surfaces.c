@@ -395,6 +395,61 @@ static int read_114(reader *r, const params *p, iges_surface *sf)
     return 1;
 }
 
+/* Relative to the base surface's size: how close the fitted offset
+ * surface is made to the true offset. */
+#define OFFSET_TOL 1e-5
+
+static double box_size(const sc_surface *s)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = 0; k < (size_t)s->nu * s->nv; k++)
+        for (int d = 0; d < 3; d++) {
+            double x = s->cp[4 * k + d] / s->cp[4 * k + 3];
+            lo[d] = fmin(lo[d], x);
+            hi[d] = fmax(hi[d], x);
+        }
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* 140: NDX, NDY, NDZ, D, DE: the surface DE moved by D along its unit
+ * normal, fitted (sc_offset_fit) within OFFSET_TOL of its size. The base
+ * is taken in the 140's space (its own transformation applied). */
+static int read_140(reader *r, const params *p, iges_surface *sf)
+{
+    double d, m[12];
+    int base, e = p->entity;
+    if (iges_need(r, p, 5) || iges_real(r, p, 4, &d) || iges_pointer(r, p, 5, &base))
+        return SC_FAIL;
+    if (base < 0)
+        return iges_fail(r, e, iges_line(r, p, 5), "its surface pointer is null");
+    if (r->ent[base].busy)
+        return iges_fail(r, e, 0, "reference cycle: the offset surface is its own base");
+    iges_surface b;
+    r->ent[e].busy = 1;
+    int status = iges_read_surface(r, base, &b);
+    r->ent[e].busy = 0;
+    if (status != 1 || b.need_bounds) {
+        sc_surface_free(&b.nurbs);
+        return status == SC_FAIL ? SC_FAIL : 0;
+    }
+    if (iges_xform(r, base, m)) {
+        sc_surface_free(&b.nurbs);
+        return SC_FAIL;
+    }
+    memcpy(b.nurbs.xform, m, sizeof m);
+    sc_surface_bake_xform(&b.nurbs);
+    double dev, tol = OFFSET_TOL * box_size(&b.nurbs);
+    status = sc_offset_fit(&b.nurbs, d, tol, &sf->nurbs, &dev);
+    sc_surface_free(&b.nurbs);
+    r->scene->offset_surfaces++;
+    r->scene->offset_dev = fmax(r->scene->offset_dev, dev);
+    if (status)
+        sc_log(SC_LOG_WARN, "%s:%d: entity 140 (D %d): the offset surface is fitted within "
+               "%.3g, not the %.3g asked for", r->name, r->ent[e].line, 2 * e + 1, dev, tol);
+    return 1;
+}
+
 int iges_read_surface(reader *r, int e, iges_surface *sf)
 {
     memset(sf, 0, sizeof *sf);
@@ -493,9 +548,10 @@ int iges_read_surface(reader *r, int e, iges_surface *sf)
         }
         return 1;
     case 114:
+    case 140:
         if (iges_params(r, e, &p))
             return SC_FAIL;
-        status = read_114(r, &p, sf);
+        status = sf->type == 114 ? read_114(r, &p, sf) : read_140(r, &p, sf);
         if (status != 1)
             sc_surface_free(&sf->nurbs);
         return status;

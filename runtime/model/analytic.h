@@ -40,6 +40,13 @@ int sc_curve_join(const sc_curve *curves, int n, sc_curve *out);
 /* The curve's knots mapped linearly onto [t0, t1] (the shape unchanged). */
 void sc_curve_reparam(sc_curve *c, double t0, double t1);
 
+/* The offset surface base + d·N (N the unit normal su × sv) fitted as a
+ * piecewise bicubic (the one construction here that is not exact):
+ * refined until the fit is within tol of the offset at every check; *dev
+ * the largest distance measured. SC_FAIL (with the best fit in *out and
+ * its *dev) when 128 x 128 cells do not reach tol. */
+int sc_offset_fit(const sc_surface *base, double d, double tol, sc_surface *out, double *dev);
+
 /* Whether the surface closes on itself along dir (0 = u): the first and
  * last rows of control points coincide. */
 int sc_surface_closed(const sc_surface *s, int dir);
