@@ -374,8 +374,9 @@ TEST(iges_plane_face_from_model_curves_exact)
 TEST(iges_conic_trims_exact)
 {
     /* Trim loops of 104 conic arcs in parameter space: a whole ellipse
-     * (semi-axes 0.3, 0.2, moved to (0.5, 0.5) by a 124) and a parabola
-     * arc y = x^2 closed by a line, on two planes over [0, 1]^2. */
+     * (semi-axes 0.3, 0.2, moved to (0.5, 0.5) by a 124), a parabola arc
+     * y = x^2 and a hyperbola arc x^2 - y^2 = 0.04 (s from -1 to 1), each
+     * closed by a line, on three planes over [0, 1]^2. */
     spec e[] = {
         {128, iges_plane_params(1), 0, 0, NULL},                                     /* D 1 */
         {124, "124,1.,0.,0.,0.5,0.,1.,0.,0.5,0.,0.,1.,0.;", 0, 0, NULL},             /* D 3 */
@@ -389,10 +390,17 @@ TEST(iges_conic_trims_exact)
         {102, "102,2,15,17;", 0, 0, NULL},                                           /* D 19 */
         {142, "142,0,11,19,0,1;", 0, 0, NULL},                                       /* D 21 */
         {144, "144,11,1,0,21;", 0, 0, NULL},                                         /* D 23 */
+        {128, iges_plane_params(1), 0, 0, NULL},                                     /* D 25 */
+        {124, "124,1.,0.,0.,0.3,0.,1.,0.,0.5,0.,0.,1.,0.;", 0, 0, NULL},             /* D 27 */
+        {104, "104,1.,0.,-1.,0.,0.,-0.04,0.,0.30861612696304874,-0.2350402387287603,0.30861612696304874,0.2350402387287603;", 27, 0, NULL},          /* D 29 */
+        {110, "110,0.30861612696304874,0.2350402387287603,0.,0.30861612696304874,-0.2350402387287603,0.;", 27, 0, NULL},                           /* D 31 */
+        {102, "102,2,29,31;", 0, 0, NULL},                                           /* D 33 */
+        {142, "142,0,25,33,0,1;", 0, 0, NULL},                                       /* D 35 */
+        {144, "144,25,1,0,35;", 0, 0, NULL},                                         /* D 37 */
     };
     sc_scene s;
-    CHECK_INT(iges_read_specs(e, 12, &s), SC_OK);
-    CHECK_INT(s.nsurfaces, 2);
+    CHECK_INT(iges_read_specs(e, 19, &s), SC_OK);
+    CHECK_INT(s.nsurfaces, 3);
     CHECK_INT(s.dropped_loops, 0);
     const sc_curve *ell = &s.surfaces[0].loops[0].curves[0];
     const sc_curve *par = &s.surfaces[1].loops[0].curves[0];
@@ -407,6 +415,14 @@ TEST(iges_conic_trims_exact)
     for (int k = 0; k <= 100; k++) {
         iges_eval2(par, t0 + (t1 - t0) * k / 100, p);
         CHECK_NEAR(p[1] - 0.2, (p[0] - 0.5) * (p[0] - 0.5), 1e-15);
+    }
+    const sc_curve *hyp = &s.surfaces[2].loops[0].curves[0];
+    sc_curve_domain(hyp, &t0, &t1);
+    for (int k = 0; k <= 100; k++) {
+        iges_eval2(hyp, t0 + (t1 - t0) * k / 100, p);
+        double x = p[0] - 0.3, y = p[1] - 0.5;
+        CHECK_NEAR(x * x - y * y, 0.04, 1e-14);
+        CHECK(x > 0);
     }
     sc_trim *trim = NULL;
     sc_error err;

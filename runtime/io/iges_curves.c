@@ -74,7 +74,8 @@ static int read_100(reader *r, const params *p, const double m[12], curve_list *
  * of a circle: centre and axes from the quadratic form, counter-clockwise
  * from start to end (start = end: the whole ellipse). A parabola (form 3)
  * arc is a quadratic Bézier whose middle point is where the end tangents
- * meet. Hyperbolas are not converted. */
+ * meet. A hyperbola (form 2) arc is made of rational quadratic pieces
+ * (below). */
 static int read_104(reader *r, const params *p, const double m[12], curve_list *out)
 {
     double v[11];
@@ -135,8 +136,50 @@ static int read_104(reader *r, const params *p, const double m[12], curve_list *
         iges_put_point(c, 2, m, xe, ye, zt, 1);
         return SC_OK;
     }
-    r->unsupported_entity = p->entity;
-    return LOOP_UNSUPPORTED;
+    /* hyperbola: about its centre, l1 X^2 + l2 Y^2 = -f with l1, l2 of
+     * opposite signs; X = ±a cosh s, Y = b sinh s on the branch of the
+     * ends. A piece from s0 to s1 is a rational quadratic with middle
+     * point (a cosh m, b sinh m) / cosh h and weight cosh h (m the middle,
+     * h half the span): the hyperbolic counterpart of a circle's arc. */
+    double det = 4 * A * C - B * B;
+    double x0 = (B * E - 2 * C * D) / det, y0 = (B * D - 2 * A * E) / det;
+    double f = F + 0.5 * (D * x0 + E * y0);
+    double th = 0.5 * atan2(B, A - C), c = cos(th), s = sin(th);
+    double l1 = A * c * c + B * c * s + C * s * s, l2 = A * s * s - B * c * s + C * c * c;
+    if (-f / l1 < 0) { /* make X the transverse axis */
+        double tmp = l1;
+        l1 = l2;
+        l2 = tmp;
+        double nc = -s, ns = c;
+        c = nc;
+        s = ns;
+    }
+    if (!(-f / l1 > 0) || !(f / l2 > 0))
+        return iges_fail(r, p->entity, iges_line(r, p, 1), "degenerate hyperbola");
+    double a = sqrt(-f / l1), b = sqrt(f / l2);
+    double xs_ = (xs - x0) * c + (ys - y0) * s, ys_ = -(xs - x0) * s + (ys - y0) * c;
+    double xe_ = (xe - x0) * c + (ye - y0) * s, ye_ = -(xe - x0) * s + (ye - y0) * c;
+    if (xs_ * xe_ < 0)
+        return iges_fail(r, p->entity, iges_line(r, p, 8), "hyperbola arc with its ends on "
+                         "two branches");
+    double sign = xs_ < 0 ? -1 : 1, s0 = asinh(ys_ / b), s1 = asinh(ye_ / b);
+    int pieces = (int)ceil(fabs(s1 - s0) / 2);
+    pieces = pieces < 1 ? 1 : pieces > 64 ? 64 : pieces;
+    sc_curve *k = iges_list_push(out);
+    sc_curve_alloc(k, list_dim(out), 2, 2 * pieces + 1);
+    for (int i = 0; i < 3; i++) {
+        k->knots[i] = 0;
+        k->knots[2 * pieces + 1 + i] = pieces;
+    }
+    for (int i = 1; i < pieces; i++)
+        k->knots[2 * i + 1] = k->knots[2 * i + 2] = i;
+    double half = (s1 - s0) / pieces / 2, w = cosh(half);
+    for (int i = 0; i <= 2 * pieces; i++) {
+        double at = s0 + i * half, reach = i % 2 ? 1 / w : 1;
+        double X = sign * a * cosh(at) * reach, Y = b * sinh(at) * reach;
+        iges_put_point(k, i, m, x0 + X * c - Y * s, y0 + X * s + Y * c, zt, i % 2 ? w : 1);
+    }
+    return SC_OK;
 }
 
 /* Cubic power-basis coefficients c0 + c1 s + c2 s² + c3 s³ on [0, h] as
