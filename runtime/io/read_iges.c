@@ -172,6 +172,28 @@ static void add_domain_loop(sc_surface *s)
     s->loops[0] = outer;
 }
 
+static void curve_end(const sc_curve *c, int last, double p[2])
+{
+    const double *q = c->cp + 3 * (size_t)(last ? c->ncp - 1 : 0);
+    p[0] = q[0] / q[2];
+    p[1] = q[1] / q[2];
+}
+
+/* The widest gap between consecutive curves of a loop (the last and the
+ * first included), relative to the surface's domain. */
+static double largest_gap(const sc_surface *s, const curve_list *l)
+{
+    double u0, u1, v0, v1, worst = 0;
+    sc_surface_domain(s, &u0, &u1, &v0, &v1);
+    for (int i = 0; i < l->n; i++) {
+        double a[2], b[2];
+        curve_end(&l->items[i], 1, a);
+        curve_end(&l->items[(i + 1) % l->n], 0, b);
+        worst = fmax(worst, hypot(a[0] - b[0], a[1] - b[1]));
+    }
+    return worst / fmax(u1 - u0, v1 - v0);
+}
+
 /* Builds the parameter-space loop whose entity is `e` (142, 141 or 508)
  * and attaches it to the surface (*added set), or says why it cannot be
  * (LOOP_NO_PCURVE, LOOP_UNSUPPORTED). */
@@ -188,6 +210,14 @@ static int attach_pcurves(reader *r, int e, int is_hole, sc_surface *s, int *add
                 iges_list_free(&l);
                 return iges_fail(r, e, 0, "trim curve %d: %s", i + 1, check.message);
             }
+        }
+        /* A parameter-space loop that does not close (Open CASCADE writes
+         * such loops on periodic B-spline surfaces) would be dropped by
+         * validation: the model-space curves, when there are any, are
+         * projected instead. */
+        if (l.n > 0 && largest_gap(s, &l) > 1e-3) {
+            iges_list_free(&l);
+            return LOOP_NO_PCURVE;
         }
         if (l.n > 0) {
             add_loop(s, is_hole, &l);
