@@ -2,10 +2,12 @@
  * trimmed surfaces of CAD models (144 trimmed surfaces, 143 bounded
  * surfaces, 510 B-rep faces, 308/408 subfigure instances, and every surface
  * that nothing references), with their trim loops in parameter space. This
- * file is the top of the reader: the record layer, the global and directory
- * sections, the loops and the faces; parameters are read in iges_params.c,
- * curves in iges_curves.c, surfaces in iges_surfaces.c, and loops given
- * only in model space are projected in iges_project.c.
+ * file is the top of the reader: the loops, the faces, the subfigure
+ * instances and the whole file; parameters are read in iges_params.c,
+ * records and sections in iges_sections.c, curves in iges_curves.c,
+ * surfaces in iges_surfaces.c, the model-space curves of a loop in
+ * iges_faces.c, and loops given only in model space are projected with
+ * runtime/model/project.c.
  *
  * Real files are sloppy where it costs nothing to forgive (no line breaks,
  * CRLF, wrong sequence numbers and status flags, a global section without a
