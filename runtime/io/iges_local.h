@@ -2,9 +2,10 @@
  * state (records, directory entries, the parameter cache, the geometry
  * budget), the free-format parameter accessors that fail with
  * `file:line: entity TYPE (D n): ...`, transformations and colours
- * (iges_params.c), trim and model-space curves (iges_curves.c), surfaces
- * (iges_surfaces.c), the projection of model-space loops (iges_project.c).
- * read_iges.c, the top, reads the sections and builds the faces. */
+ * (iges_params.c), records and sections (iges_sections.c), trim and
+ * model-space curves (iges_curves.c), surfaces (iges_surfaces.c), the
+ * model-space curves of a loop (iges_faces.c). read_iges.c, the top,
+ * builds the faces. */
 #ifndef SC_IGES_LOCAL_H
 #define SC_IGES_LOCAL_H
 
