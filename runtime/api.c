@@ -104,6 +104,10 @@ int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err)
         info->skipped += sc->skipped[i].count;
     info->skipped_kinds = sc->nskipped;
     info->dropped_loops = sc->dropped_loops;
+    info->projected_loops = sc->projected_loops;
+    info->projection_dev = sc->projection_dev;
+    info->offset_surfaces = sc->offset_surfaces;
+    info->offset_dev = sc->offset_dev;
     sc_scene_bounds(sc, info->lo, info->hi);
     if (sc->terrain) {
         info->terrain_patches = sc_terrain_patch_count(sc);

@@ -106,17 +106,17 @@ TEST(iges_malformed_pointer_out_of_range)
 TEST(iges_unused_entities_never_fail)
 {
     /* Next to a good plane: a 142 that nothing uses, pointing nowhere, and
-     * a 140 offset surface (unsupported) whose surface pointer is broken.
-     * Neither is used by a surface, so the file reads; the 140 is counted. */
+     * a 406 property (not converted) whose pointer is broken. Neither is
+     * used by a surface, so the file reads; the 406 is counted. */
     spec e[] = {
         {128, iges_plane_params(1), 0, 0, NULL},
         {142, "142,0,999,0,0,1;", 0, 0, NULL},
-        {140, "140,0.,0.,1.,1.,999;", 0, 0, NULL},
+        {406, "406,1,999;", 0, 0, NULL},
     };
     sc_scene s;
     CHECK_INT(iges_read_specs(e, 3, &s), SC_OK);
     CHECK_INT(s.nsurfaces, 1);
-    CHECK_INT(iges_skipped_count(&s, "iges-140", "unsupported"), 1);
+    CHECK_INT(iges_skipped_count(&s, "iges-406", "unsupported"), 1);
     sc_scene_free(&s);
     /* The same 142 used as a trim loop: now it matters and fails the file. */
     char *text = variant(4, "142,0,999,7,0,2;", 0);

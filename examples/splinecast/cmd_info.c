@@ -18,6 +18,12 @@ static const char usage[] =
     "                             S counts the trim curves over all L loops)\n"
     "  skipped TYPE N REASON      (what the reader did not turn into surfaces)\n"
     "  dropped_loops N            (when trim loops were dropped by validation)\n"
+    "  projected_loops N max_dev D   (when trim loops given only in model space\n"
+    "                             were projected into parameter space; D is the\n"
+    "                             largest distance measured between such a loop\n"
+    "                             on its surface and its 3D curves)\n"
+    "  offset_surfaces N max_dev D   (when offset surfaces were fitted: D is the\n"
+    "                             largest distance measured from the true offset)\n"
     "  bbox X0 Y0 Z0 X1 Y1 Z1     (world space, of the control points)\n"
     "  key K                      (each distinct variant key the scene needs, sorted)\n"
     "A surface the GPU programs cannot draw (a degree above 16) gets no key: a\n"
@@ -55,6 +61,10 @@ int cmd_info(int argc, char **argv)
     }
     if (status == SC_OK && info.dropped_loops)
         printf("dropped_loops %d\n", info.dropped_loops);
+    if (status == SC_OK && info.projected_loops)
+        printf("projected_loops %d max_dev %.6g\n", info.projected_loops, info.projection_dev);
+    if (status == SC_OK && info.offset_surfaces)
+        printf("offset_surfaces %d max_dev %.6g\n", info.offset_surfaces, info.offset_dev);
     if (status == SC_OK)
         printf("bbox %.17g %.17g %.17g %.17g %.17g %.17g\n", info.lo[0], info.lo[1], info.lo[2],
                info.hi[0], info.hi[1], info.hi[2]);

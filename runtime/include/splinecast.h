@@ -88,6 +88,14 @@ typedef struct sc_scene_info {
     double lo[3], hi[3];     /* world-space bounding box of the control points */
     int terrain_patches;     /* a terrain's triangular patches (0 otherwise);
                                 its one surface stands for it */
+    int projected_loops;     /* trim loops given only in model space (3D
+                                curves), projected into parameter space */
+    double projection_dev;   /* the largest distance measured between such
+                                a loop on its surface and its 3D curves
+                                (object units) */
+    int offset_surfaces;     /* offset surfaces, fitted rather than exact */
+    double offset_dev;       /* the largest distance measured between such a
+                                fit and the true offset (object units) */
 } sc_scene_info;
 
 int sc_query_scene_info(sc_scene_id scene, sc_scene_info *info, sc_error *err);

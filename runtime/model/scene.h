@@ -64,6 +64,12 @@ typedef struct sc_scene {
     int dropped_loops;    /* loops removed by validation */
     int repaired_gaps;    /* gaps closed with a straight segment */
     char source[256];     /* file name the scene came from (for messages) */
+    int projected_loops;  /* trim loops given in model space, projected */
+    double projection_dev; /* the largest distance measured between such a
+                              loop on the surface and its 3D curves */
+    int offset_surfaces;  /* offset surfaces fitted (not exact) */
+    double offset_dev;    /* the largest distance measured between such a
+                             fit and the true offset */
     /* A terrain (runtime/terrain/tri_bezier.h): triangular Bézier height
      * patches, drawn with a `tri` key and traced by the terrain reference
      * instead of the surfaces' geometry. Surface 0 then only stands for it
