@@ -23,6 +23,7 @@ static const char *const problem_text[] = {
     [PROBLEM_RANGE] = "is out of range",
     [PROBLEM_CAMERA] = "is not a usable view",
     [PROBLEM_CONTEXT] = "belongs to a different context",
+    [PROBLEM_NOT_APP_CONTEXT] = "is not on an application's context",
     [PROBLEM_TERRAIN_SOURCE] = "gives more than one of path, text, heights and franke: give one",
 };
 
@@ -150,6 +151,13 @@ context_object *sc_api_current_context;
 
 int sc_api_make_current(context_object *c, sc_error *err)
 {
+    /* An application's context is current whenever a call names it (the
+     * application's doing); which context is current afterwards is then
+     * unknown, so the next call on one of the library's makes it current. */
+    if (sc_gl_context_is_app(c->gl)) {
+        sc_api_current_context = NULL;
+        return SC_OK;
+    }
     if (c == sc_api_current_context)
         return SC_OK;
     if (sc_gl_context_make_current(c->gl, err) != SC_OK)

@@ -41,6 +41,7 @@ typedef enum problem {
     PROBLEM_CAMERA,
     PROBLEM_CONTEXT,
     PROBLEM_TERRAIN_SOURCE,
+    PROBLEM_NOT_APP_CONTEXT,
 } problem;
 
 /* "WHAT PROBLEM: detail" into err; returns SC_FAIL. */

@@ -5,6 +5,8 @@
  * handles and checks in api_objects.c. */
 #include "api_private.h"
 
+#include "gl_state.h"
+
 /* ---- contexts and programs ---- */
 
 int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *err)
@@ -19,12 +21,16 @@ int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *e
         return SC_FAIL;
     sc_gl_context_desc gl_desc = {.backend = desc->backend, .debug = desc->debug};
     context_object *c = sc_alloc(1, sizeof *c);
-    if (sc_gl_context_create(&gl_desc, &c->gl, err) != SC_OK) {
+    if ((desc->get_proc_address
+             ? sc_gl_context_wrap((sc_gl_app_get_proc_fn)desc->get_proc_address, &c->gl, err)
+             : sc_gl_context_create(&gl_desc, &c->gl, err)) != SC_OK) {
         sc_api_current_context = NULL;  /* a failed attempt may have changed it */
         free(c);
         return SC_FAIL;
     }
-    sc_api_current_context = c;  /* creating made it current */
+    /* Creating made one of the library's current; the application's is
+     * its own business (sc_api_make_current). */
+    sc_api_current_context = sc_gl_context_is_app(c->gl) ? NULL : c;
     c->programs = sc_program_cache_create(sc_gl_context_gl(c->gl));
     if ((out->id = sc_api_pool_insert(&sc_api_contexts, c, err)) == 0) {
         sc_program_cache_destroy(c->programs);
@@ -332,7 +338,35 @@ int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err
     if (!r || make_camera(camera, &r->scene->scene, &cam, err) != SC_OK ||
         sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
-    return sc_renderer_draw(r->renderer, &cam, err);
+    /* In an application's context the renderer's own target is drawn, and
+     * what that changes is put back. */
+    sc_gl_state saved;
+    int app = sc_gl_context_is_app(r->context->gl);
+    const sc_gl *gl = sc_gl_context_gl(r->context->gl);
+    if (app)
+        sc_gl_state_save(gl, &saved);
+    int status = sc_renderer_draw(r->renderer, &cam, err);
+    if (app)
+        sc_gl_state_restore(gl, &saved);
+    return status;
+}
+
+int sc_draw_gl(sc_renderer_id renderer, const sc_gl_draw_desc *desc, sc_error *err)
+{
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    if (!r)
+        return SC_FAIL;
+    if (!desc)
+        return sc_api_invalid(err, "desc", PROBLEM_NULL, NULL);
+    if (!sc_gl_context_is_app(r->context->gl))
+        return sc_api_invalid(err, "renderer", PROBLEM_NOT_APP_CONTEXT,
+                              "sc_draw_gl draws into an application's context "
+                              "(sc_context_desc.get_proc_address); use sc_draw or sc_render");
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(desc->view[i]) || !isfinite(desc->projection[i]))
+            return sc_api_invalid(err, "sc_gl_draw_desc", PROBLEM_CAMERA,
+                                  "%s[%d] is not finite", isfinite(desc->view[i]) ? "projection" : "view", i);
+    return sc_renderer_draw_app(r->renderer, desc->view, desc->projection, err);
 }
 
 /* The frame of the renderer's last draw; render_ms is the caller's. */
@@ -342,7 +376,15 @@ static int read_frame(renderer_object *r, double render_ms, sc_frame_id *out, sc
         return SC_FAIL;
     frame_object *f = sc_alloc(1, sizeof *f);
     sc_image image = {0};
-    if (sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
+    sc_gl_state saved;
+    int app = sc_gl_context_is_app(r->context->gl);
+    const sc_gl *gl = sc_gl_context_gl(r->context->gl);
+    if (app)
+        sc_gl_state_save(gl, &saved);
+    int status = sc_renderer_read(r->renderer, &image, &f->aov, err);
+    if (app)
+        sc_gl_state_restore(gl, &saved);
+    if (status != SC_OK) {
         sc_image_free(&image);
         sc_aov_free(&f->aov);
         free(f);

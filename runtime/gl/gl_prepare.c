@@ -320,6 +320,8 @@ void sc_renderer_destroy(sc_renderer *r)
     const sc_gl *gl = r->gl;
     if (r->nearest_texture)
         gl->DeleteTextures(1, &r->nearest_texture);
+    if (r->app_nearest)
+        gl->DeleteTextures(1, &r->app_nearest);
     sc_gl_target_destroy(gl, &r->target);
     sc_gpu_data_free(gl, &r->data);
     GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};

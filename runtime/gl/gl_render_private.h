@@ -132,12 +132,29 @@ struct sc_renderer {
     double raster_origin[3]; /* what hull vertices are rasterised relative to */
     float *cosine;           /* per pixel: cosine of its ray to the view direction */
     double cosine_fovy;      /* the field of view they are for (0: none yet) */
+    /* sc_nearest_t for draws into an application's framebuffer (gl_embed.c):
+     * far everywhere, app_nearest_w × app_nearest_h tiles. */
+    GLuint app_nearest;
+    int app_nearest_w, app_nearest_h;
 };
 
 static inline int manual_ert(sc_ray_termination mode)
 {
     return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
 }
+
+/* The camera's view-projection moved to the origin (what the programs'
+ * sc_view_projection is): proj × view with view's translation dropped. */
+void sc_render_eye_projection(const float view[16], const float proj[16], float vp[16]);
+
+/* Draws every hull into the bound framebuffer with the depth test, the
+ * programs' uniforms set from the eye (world space, double), vp
+ * (sc_render_eye_projection) and footprint (2·tan(fovy/2) / image height);
+ * fwd is the view direction. manual: batches that read back the nearest
+ * distances between them (the renderer's own target only). gl_render.c's
+ * frames and gl_embed.c's draws into an application's framebuffer. */
+int sc_render_hulls(sc_renderer *r, const double eye[3], const double fwd[3], const float vp[16],
+                    float footprint, int manual, sc_error *err);
 
 /* sRGB 0.2, the reference images' background (shade.c), in linear light:
  * the colour attachment is sRGB, so the GL encodes it on the way in. */

@@ -344,15 +344,25 @@ int sc_compare_audits(const sc_audit_text *before, const sc_audit_text *after, F
 typedef struct sc_context_desc {
     sc_backend backend;
     int debug;                 /* a debug context: more driver messages */
+    /* Instead of an offscreen context of the library's own: the
+     * application's OpenGL 4.5 core context, current when sc_make_context
+     * and every later call naming it are made, its functions looked up
+     * through this (eglGetProcAddress, glXGetProcAddressARB,
+     * glfwGetProcAddress, …). The library never makes it current or
+     * destroys it; sc_draw_gl draws into its bound framebuffer. backend and
+     * debug are then ignored. */
+    void (*(*get_proc_address)(const char *name))(void);
 } sc_context_desc;
 
-/* An offscreen OpenGL 4.5 core context (EGL or OSMesa, loaded at run time). */
+/* An offscreen OpenGL 4.5 core context (EGL or OSMesa, loaded at run time),
+ * or the application's (get_proc_address). */
 int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *err);
 /* Also destroys the context's programs and renderers. */
 void sc_destroy_context(sc_context_id ctx);
 
 typedef struct sc_context_info {
-    sc_backend backend;        /* the one actually used: EGL or OSMESA */
+    sc_backend backend;        /* the one actually used: EGL or OSMESA
+                                  (DEFAULT for an application's context) */
     char description[256];     /* "egl-surfaceless llvmpipe (…)" etc. */
 } sc_context_info;
 
@@ -468,6 +478,25 @@ int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id
 int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err);
 /* The image and AOVs of the renderer's last frame (sc_draw first). */
 int sc_read_frame(sc_renderer_id renderer, sc_frame_id *out, sc_error *err);
+
+/* The application's view of one frame (sc_draw_gl): OpenGL's
+ * column-major matrices, as glUniformMatrix4fv takes them. */
+typedef struct sc_gl_draw_desc {
+    float view[16];            /* world to eye (gluLookAt's); required */
+    float projection[16];      /* a perspective projection (gluPerspective's,
+                                  glFrustum's); required */
+} sc_gl_draw_desc;
+
+/* Draws the renderer's scene into the framebuffer bound in the
+ * application's context (sc_context_desc.get_proc_address), in its
+ * viewport, with its view and projection, writing each hit's depth into its
+ * depth buffer through the ordinary depth test (GL_LESS), so that the
+ * surfaces and the application's own geometry hide each other where they
+ * should, whichever is drawn first. Neither clears nor waits. The GL state
+ * it changes is restored (docs/api.md lists it). The colour is linear RGB:
+ * enable GL_FRAMEBUFFER_SRGB on an sRGB framebuffer, as for your own lit
+ * geometry. Needs glClipControl's and glDepthRange's defaults. */
+int sc_draw_gl(sc_renderer_id renderer, const sc_gl_draw_desc *desc, sc_error *err);
 
 typedef struct sc_reference_desc {
     int threads;               /* 0: one per online core */
