@@ -32,7 +32,9 @@ int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *e
      * its own business (sc_api_make_current). */
     sc_api_current_context = sc_gl_context_is_app(c->gl) ? NULL : c;
     c->programs = sc_program_cache_create(sc_gl_context_gl(c->gl));
-    if ((out->id = sc_api_pool_insert(&sc_api_contexts, c, err)) == 0) {
+    if (sc_program_cache_set_sources(c->programs, desc->programs_dir, desc->generate_missing != 0,
+                                     desc->binary_cache_dir, err) != SC_OK ||
+        (out->id = sc_api_pool_insert(&sc_api_contexts, c, err)) == 0) {
         sc_program_cache_destroy(c->programs);
         sc_gl_context_destroy(c->gl);
         sc_api_current_context = NULL;
@@ -42,11 +44,12 @@ int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *e
     return SC_OK;
 }
 
-static void destroy_renderer_object(renderer_object *r)
+void sc_api_destroy_renderer_object(renderer_object *r)
 {
     if (sc_api_make_current(r->context, NULL) == SC_OK)
         sc_renderer_destroy(r->renderer);
-    sc_api_release_scene(r->scene);
+    if (r->scene)   /* NULL for a packed renderer */
+        sc_api_release_scene(r->scene);
     free(r);
 }
 
@@ -59,7 +62,7 @@ void sc_destroy_context(sc_context_id ctx)
         renderer_object *r = sc_api_renderers.slots[i].object;
         if (r && r->context == c) {
             sc_api_pool_remove(&sc_api_renderers, sc_api_slot_id(&sc_api_renderers, i));
-            destroy_renderer_object(r);
+            sc_api_destroy_renderer_object(r);
         }
     }
     for (int i = 0; i < sc_api_programs.count; i++) {
@@ -138,7 +141,7 @@ int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error
 
 /* ---- renderers ---- */
 
-static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *err)
+int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *err)
 {
     memset(r, 0, sizeof *r);
     if (sc_api_check_enum(d->hull_split, SC_SPLIT_UNIFORM + 1, "sc_renderer_desc.hull_split", err) ||
@@ -189,9 +192,11 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
         return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
     out->id = 0;
     context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, err);
+    if (c && desc && desc->pack)
+        return sc_api_make_packed_renderer(c, scene, desc, out, err);
     scene_object *s = c ? sc_api_pool_get(&sc_api_scenes, scene.id, err) : NULL;
     sc_render_desc internal;
-    if (!s || render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
+    if (!s || sc_api_render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
         sc_api_make_current(c, err) != SC_OK)
         return SC_FAIL;
     /* The context's cache: sc_make_program on the renderer's keys returns
@@ -207,7 +212,7 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
     }
     s->users++;
     if ((out->id = sc_api_pool_insert(&sc_api_renderers, r, err)) == 0) {
-        destroy_renderer_object(r);
+        sc_api_destroy_renderer_object(r);
         return SC_FAIL;
     }
     return SC_OK;
@@ -219,7 +224,7 @@ void sc_destroy_renderer(sc_renderer_id renderer)
     if (!r)
         return;
     sc_api_pool_remove(&sc_api_renderers, renderer.id);
-    destroy_renderer_object(r);
+    sc_api_destroy_renderer_object(r);
 }
 
 int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, int *count,
@@ -228,7 +233,7 @@ int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, 
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     if (!r)
         return SC_FAIL;
-    int nsurfaces = r->scene->scene.nsurfaces, n = 0;
+    int nsurfaces = sc_renderer_scene(r->renderer)->nsurfaces, n = 0;
     char (*texts)[SCG_KEY_MAX] = sc_alloc((size_t)(nsurfaces ? nsurfaces : 1), SCG_KEY_MAX);
     for (int s = 0; s < nsurfaces; s++) {
         scg_key_format(sc_renderer_surface_key(r->renderer, s), texts[n], SCG_KEY_MAX);
@@ -263,6 +268,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .culled_hulls = stats.culled_hulls,
         .readbacks = stats.readbacks,
     };
+    sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);
     return SC_OK;
 }
 
@@ -335,7 +341,7 @@ int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err
 {
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     sc_camera cam;
-    if (!r || make_camera(camera, &r->scene->scene, &cam, err) != SC_OK ||
+    if (!r || make_camera(camera, sc_renderer_scene(r->renderer), &cam, err) != SC_OK ||
         sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
     /* In an application's context the renderer's own target is drawn, and

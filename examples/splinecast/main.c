@@ -17,6 +17,7 @@ static const command commands[] = {
     {"bench", cmd_bench, "speed of the GPU path: frame time, fill rate, iterations"},
     {"terrain", cmd_terrain, "ray cast the quartic spline of a height grid on the GPU"},
     {"splines", cmd_splines, "the quartic spline of a height grid; Table I error"},
+    {"pack", cmd_pack, "write a scene's GPU data (records, trims, hulls, keys) to one file"},
 };
 
 static void usage(FILE *f)

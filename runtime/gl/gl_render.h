@@ -114,6 +114,9 @@ int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err);
 int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err);
 
 void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats);
+/* The scene the renderer draws: a packed renderer's stand-in (gl_pack.h),
+ * whose surfaces have their colours and the scene's box alone. */
+const sc_scene *sc_renderer_scene(const sc_renderer *r);
 /* The key surface s is drawn with. */
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface);
 

@@ -136,7 +136,31 @@ struct sc_renderer {
      * far everywhere, app_nearest_w × app_nearest_h tiles. */
     GLuint app_nearest;
     int app_nearest_w, app_nearest_h;
+    sc_scene *own_scene;     /* a packed renderer's stand-in scene (gl_pack.c):
+                                its surfaces' colours alone */
 };
+
+/* ---- preparation steps gl_prepare.c and gl_pack.c share ---- */
+
+/* The key of surface s under the renderer's desc (generic where asked). */
+void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key);
+/* The origin hulls are rasterised relative to: the middle of their box. */
+void sc_prepare_raster_origin(sc_renderer *r);
+/* The GPU vertices of hulls [first, first + count) (r->hulls, r->data's
+ * records and centres, r->kinds, r->raster_origin). */
+void sc_prepare_fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex *verts);
+/* New vertex (verts, r->hulls.nvertices of them) and index buffers, and
+ * the frame's scratch sized for r->hulls. */
+int sc_prepare_upload_hull_buffers(sc_renderer *r, const gpu_vertex *verts, sc_error *err);
+void sc_prepare_vertex_array(sc_renderer *r);
+int sc_prepare_upload_colours(sc_renderer *r, sc_error *err);
+/* One group per distinct program of r->surface_program; each hull's. */
+void sc_prepare_groups(sc_renderer *r);
+void sc_prepare_group_hulls(sc_renderer *r);
+/* The GPU bytes the renderer needs: patch data, hulls, colours. */
+size_t sc_prepare_gpu_bytes(const sc_renderer *r);
+/* r->desc's defaults filled in (termination, order, batch size). */
+void sc_prepare_defaults(sc_renderer *r);
 
 static inline int manual_ert(sc_ray_termination mode)
 {

@@ -352,6 +352,18 @@ typedef struct sc_context_desc {
      * destroys it; sc_draw_gl draws into its bound framebuffer. backend and
      * debug are then ignored. */
     void (*(*get_proc_address)(const char *name))(void);
+    /* Where the context's programs come from (docs/api.md, "Build time to
+     * run time"). programs_dir: a folder `splinecast gen` wrote; a key is
+     * read from it by its manifest (no generation, no glslang), and a key
+     * the manifest lacks, or a file that is not what the manifest says,
+     * fails naming the key, unless generate_missing is 1 (then generated
+     * as without a folder). binary_cache_dir: linked programs are kept
+     * there (glGetProgramBinary), keyed by key, driver and GLSL, so that a
+     * second start loads instead of compiling; nothing is kept when the
+     * driver has no binary formats. NULL: none. */
+    const char *programs_dir;
+    int generate_missing;
+    const char *binary_cache_dir;
 } sc_context_desc;
 
 /* An offscreen OpenGL 4.5 core context (EGL or OSMesa, loaded at run time),
@@ -421,7 +433,22 @@ typedef struct sc_renderer_desc {
                                   max_iters is the depth of the subdivision
                                   stack (24), with bclip the number of
                                   clipping steps (32); both ignore start */
+    /* Instead of a scene: a file `splinecast pack` (sc_save_pack) wrote,
+     * drawn as it is (docs/pack-format.md); the scene handle is then the
+     * zero handle. The pack fixed keys, hulls and view when it was
+     * written: the fields above that decide them must be zero; order,
+     * batch_hulls, gpu_memory_budget and own_programs apply. */
+    const char *pack;
 } sc_renderer_desc;
+
+/* Writes what a renderer made with desc would upload for the scene —
+ * patch records and trim blocks, hull vertices and indices, each surface's
+ * key and colour — to a pack file (docs/pack-format.md; never
+ * half-written), without a GL context. sc_make_renderer with
+ * sc_renderer_desc.pack draws it; the programs it needs are the keys of
+ * sc_query_scene_keys with the same options. Terrains are refused. */
+int sc_save_pack(sc_scene_id scene, const sc_renderer_desc *desc, const char *path,
+                 sc_error *err);
 
 /* Prepares everything that does not depend on the view: hulls, GPU data
  * and one program per distinct key, taken from the context's program cache
@@ -450,6 +477,9 @@ typedef struct sc_renderer_info {
                                   every pixel they cover (manual modes) */
     int readbacks;             /* reads of the nearest distances so far
                                   (manual modes) */
+    double lo[3], hi[3];       /* the box of the scene's control points (a
+                                  packed renderer's: the packed scene's),
+                                  for framing a view of it */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
