@@ -19,6 +19,12 @@
  *                           precision) → sc_compare_frames
  *   changing a surface      sc_update_surface (renderers of the scene
  *                           rewrite that surface's GPU data alone)
+ *   the application's GL    sc_make_context(.get_proc_address) →
+ *                           sc_draw_gl (its framebuffer, its matrices,
+ *                           depth tested against its own geometry)
+ *   build time to run time  sc_save_pack (`splinecast pack`) + `splinecast
+ *                           gen` → sc_make_renderer(.pack) on a context
+ *                           with .programs_dir and .binary_cache_dir
  *
  * Calls are made from one thread: GL contexts belong to the thread that made
  * them, and the handle pools are not locked. */
