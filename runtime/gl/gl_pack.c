@@ -86,7 +86,8 @@ int sc_pack_build(const sc_scene *scene, const sc_render_desc *desc, sc_pack *ou
     sc_prepare_fill_vertices(r, 0, h->count, (gpu_vertex *)out->vertices);
     out->nindices = h->nindices;
     out->indices = sc_alloc((size_t)(h->nindices ? h->nindices : 1), sizeof(uint32_t));
-    memcpy(out->indices, h->indices, (size_t)h->nindices * sizeof(uint32_t));
+    if (h->nindices)
+        memcpy(out->indices, h->indices, (size_t)h->nindices * sizeof(uint32_t));
     out->nhulls = h->count;
     out->hulls = sc_alloc((size_t)(h->count ? h->count : 1), sizeof *out->hulls);
     for (int k = 0; k < h->count; k++) {
@@ -181,7 +182,8 @@ int sc_renderer_create_packed(const sc_gl *gl, const sc_pack *pack, const sc_ren
             h->vertices[v].pos[c] = verts[v].raster_pos[c] + pack->raster_origin[c];
     h->nindices = pack->nindices;
     h->indices = sc_alloc((size_t)(h->nindices ? h->nindices : 1), sizeof *h->indices);
-    memcpy(h->indices, pack->indices, (size_t)h->nindices * sizeof *h->indices);
+    if (h->nindices)
+        memcpy(h->indices, pack->indices, (size_t)h->nindices * sizeof *h->indices);
     h->nsurfaces = n;
     memcpy(r->raster_origin, pack->raster_origin, sizeof r->raster_origin);
 

@@ -88,11 +88,13 @@ int sc_pack_write(const char *path, const sc_pack *k, sc_error *err)
         memcpy(p, k->keys[i], SC_PACK_KEY_BYTES);
         memcpy(p + SC_PACK_KEY_BYTES, k->colours + 4 * i, 16);
     }
-    memcpy(buf + offsets[SEC_POINTS], k->points, (size_t)counts[SEC_POINTS] * 16);
-    memcpy(buf + offsets[SEC_KNOTS], k->knots, (size_t)counts[SEC_KNOTS] * 4);
-    memcpy(buf + offsets[SEC_RECORDS], k->records, (size_t)counts[SEC_RECORDS] * 16);
-    memcpy(buf + offsets[SEC_VERTICES], k->vertices, (size_t)k->nvertices * SC_PACK_VERTEX_BYTES);
-    memcpy(buf + offsets[SEC_INDICES], k->indices, (size_t)k->nindices * 4);
+    /* Empty arrays may be NULL, which memcpy must not see even for 0 bytes. */
+    const void *arrays[SEC_COUNT + 1] = {
+        [SEC_POINTS] = k->points, [SEC_KNOTS] = k->knots, [SEC_RECORDS] = k->records,
+        [SEC_VERTICES] = k->vertices, [SEC_INDICES] = k->indices};
+    for (int sec = SEC_POINTS; sec <= SEC_INDICES; sec++)
+        if (counts[sec])
+            memcpy(buf + offsets[sec], arrays[sec], (size_t)counts[sec] * element_bytes[sec]);
     for (int i = 0; i < k->nhulls; i++) {
         unsigned char *p = buf + offsets[SEC_HULLS] + (size_t)i * HULL_BYTES;
         const sc_pack_hull *h = &k->hulls[i];
