@@ -11,6 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
 #include "camera.h"
 #include "embed_util.h"
 #include "io.h"
@@ -201,4 +205,115 @@ TEST(embed_draw_gl_refused_on_own_context)
     CHECK_CONTAINS(err.message, "desc is NULL");
     sc_destroy_context(ctx);
     sc_destroy_scene(scene);
+}
+
+/* The application's own EGL context, current; NULL when there is none. */
+static EGLContext app_context(EGLDisplay *dpy)
+{
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    *dpy = get_display ? get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL)
+                       : EGL_NO_DISPLAY;
+    if (*dpy == EGL_NO_DISPLAY || !eglInitialize(*dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_API))
+        return EGL_NO_CONTEXT;
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    EGLContext ctx = eglCreateContext(*dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    if (ctx != EGL_NO_CONTEXT && !eglMakeCurrent(*dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+        eglDestroyContext(*dpy, ctx);
+        ctx = EGL_NO_CONTEXT;
+    }
+    return ctx;
+}
+
+/* In the application's context: sc_render draws what it draws on the
+ * library's own context and leaves the application's state as it was;
+ * sc_draw_gl refuses what it cannot draw with, saying why. */
+TEST(embed_app_context_state_and_refusals)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
+    sc_context_id own;
+    if (sc_make_context(NULL, &own, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_renderer_id r_own;
+    sc_frame_id f_own;
+    sc_camera_desc view = {.width = 64, .height = 64};
+    CHECK_INT(sc_make_renderer(own, scene, NULL, &r_own, &err), SC_OK);
+    CHECK_INT(sc_render(r_own, &view, &f_own, &err), SC_OK);
+
+    EGLDisplay dpy;
+    EGLContext egl = app_context(&dpy);
+    if (egl == EGL_NO_CONTEXT) {
+        sc_shutdown();
+        SKIP("no EGL context of the test's own");
+    }
+    PFNGLGETINTEGERVPROC get_integer = (PFNGLGETINTEGERVPROC)eglGetProcAddress("glGetIntegerv");
+    PFNGLDEPTHFUNCPROC depth_func = (PFNGLDEPTHFUNCPROC)eglGetProcAddress("glDepthFunc");
+    PFNGLENABLEPROC enable = (PFNGLENABLEPROC)eglGetProcAddress("glEnable");
+    PFNGLISENABLEDPROC is_enabled = (PFNGLISENABLEDPROC)eglGetProcAddress("glIsEnabled");
+    PFNGLVIEWPORTPROC viewport = (PFNGLVIEWPORTPROC)eglGetProcAddress("glViewport");
+    PFNGLCLIPCONTROLPROC clip_control = (PFNGLCLIPCONTROLPROC)eglGetProcAddress("glClipControl");
+    depth_func(GL_GEQUAL);
+    enable(GL_BLEND);
+    viewport(3, 4, 50, 60);
+
+    sc_context_id app;
+    CHECK_INT(sc_make_context(&(sc_context_desc){.get_proc_address = eglGetProcAddress}, &app,
+                              &err),
+              SC_OK);
+    sc_context_info info;
+    CHECK_INT(sc_query_context_info(app, &info, &err), SC_OK);
+    CHECK_INT(info.backend, SC_BACKEND_DEFAULT);
+    CHECK(!strncmp(info.description, "application ", 12));
+    sc_renderer_id r_app;
+    sc_frame_id f_app;
+    CHECK_INT(sc_make_renderer(app, scene, NULL, &r_app, &err), SC_OK);
+    CHECK_INT(sc_render(r_app, &view, &f_app, &err), SC_OK);
+    GLint func = 0, vp[4] = {0};
+    get_integer(GL_DEPTH_FUNC, &func);
+    get_integer(GL_VIEWPORT, vp);
+    CHECK_INT(func, GL_GEQUAL);
+    CHECK(is_enabled(GL_BLEND));
+    CHECK(vp[0] == 3 && vp[1] == 4 && vp[2] == 50 && vp[3] == 60);
+    sc_frame_info a, b;
+    CHECK_INT(sc_query_frame_info(f_own, &a, &err), SC_OK);
+    CHECK_INT(sc_query_frame_info(f_app, &b, &err), SC_OK);
+    long differ = 0;
+    for (int p = 0; p < 64 * 64; p++)
+        differ += a.surface[p] != b.surface[p] || memcmp(a.rgba + 4 * p, b.rgba + 4 * p, 4);
+    CHECK_INT(differ, 0);
+
+    sc_gl_draw_desc d = {.view = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -10, 1},
+                         .projection = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, -1, 0, 0, -1, 0}};
+    sc_gl_draw_desc ortho = d, singular = d, nan_view = d;
+    ortho.projection[11] = 0;
+    ortho.projection[15] = 1;
+    memset(singular.view, 0, sizeof singular.view);
+    nan_view.view[0] = NAN;
+    CHECK_INT(sc_draw_gl(r_app, &ortho, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "not a perspective one");
+    CHECK_INT(sc_draw_gl(r_app, &singular, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "singular");
+    CHECK_INT(sc_draw_gl(r_app, &nan_view, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "view[0] is not finite");
+    clip_control(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    CHECK_INT(sc_draw_gl(r_app, &d, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "GL_ZERO_TO_ONE");
+    clip_control(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    /* A surfaceless context has no default framebuffer to draw into. */
+    CHECK_INT(sc_draw_gl(r_app, &d, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "GL_FRAMEBUFFER_UNDEFINED");
+
+    sc_destroy_context(app);
+    eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(dpy, egl);
+    /* The library's own context is made current again for its next call. */
+    sc_frame_id again;
+    CHECK_INT(sc_render(r_own, &view, &again, &err), SC_OK);
+    sc_shutdown();
 }

@@ -92,6 +92,13 @@ int sc_renderer_draw_app(sc_renderer *r, const float view[16], const float proj[
                        "and glDepthRange(0, 1), the defaults; the context has %s and [%g, %g]",
                        clip_depth == GL_ZERO_TO_ONE ? "GL_ZERO_TO_ONE" : "another mode",
                        range[0], range[1]);
+    GLenum complete = gl->CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+    if (complete != GL_FRAMEBUFFER_COMPLETE)
+        return sc_fail(err, NULL, 0, "the framebuffer bound for drawing is not complete (%s)",
+                       complete == GL_FRAMEBUFFER_UNDEFINED
+                           ? "GL_FRAMEBUFFER_UNDEFINED: the context has no default framebuffer; "
+                             "bind a framebuffer object"
+                           : "bind a complete one, with a depth attachment");
     sc_gl_state saved;
     sc_gl_state_save(gl, &saved);
     int vw = saved.viewport[2], vh = saved.viewport[3];
