@@ -23,6 +23,7 @@ static const char *const problem_text[] = {
     [PROBLEM_RANGE] = "is out of range",
     [PROBLEM_CAMERA] = "is not a usable view",
     [PROBLEM_CONTEXT] = "belongs to a different context",
+    [PROBLEM_NOT_APP_CONTEXT] = "is not on an application's context",
     [PROBLEM_TERRAIN_SOURCE] = "gives more than one of path, text, heights and franke: give one",
 };
 
@@ -150,6 +151,13 @@ context_object *sc_api_current_context;
 
 int sc_api_make_current(context_object *c, sc_error *err)
 {
+    /* An application's context is current whenever a call names it (the
+     * application's doing); which context is current afterwards is then
+     * unknown, so the next call on one of the library's makes it current. */
+    if (sc_gl_context_is_app(c->gl)) {
+        sc_api_current_context = NULL;
+        return SC_OK;
+    }
     /* The program may have made a context of its own current since (a
      * window's): then the library's is made current again. */
     if (c == sc_api_current_context && sc_gl_context_is_current(c->gl))
@@ -180,4 +188,59 @@ int sc_api_count_keys(const char (*texts)[SCG_KEY_MAX], int n, sc_key *keys, int
         memcpy(keys[k].text, texts[k], SC_KEY_SIZE);
     *count = n;
     return SC_OK;
+}
+
+/* ---- renderers: the desc checked, and one destroyed (api_render.c and
+ * api_pack.c both make them) ---- */
+
+int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *err)
+{
+    memset(r, 0, sizeof *r);
+    if (sc_api_check_enum(d->hull_split, SC_SPLIT_UNIFORM + 1, "sc_renderer_desc.hull_split", err) ||
+        sc_api_check_int(d->hull_divisions, 0, SC_MAX_HULL_DIVISIONS, "sc_renderer_desc.hull_divisions", err) ||
+        sc_api_check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
+        sc_api_check_enum(d->start, SC_START_VIEW + 1, "sc_renderer_desc.start", err) ||
+        sc_api_check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
+        sc_api_check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
+        sc_api_check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
+                  err) ||
+        sc_api_check_enum(d->trim, SC_TRIM_NONE + 1, "sc_renderer_desc.trim", err) ||
+        sc_api_check_enum(d->termination, SC_TERMINATION_MANUAL_BOTH + 1,
+                   "sc_renderer_desc.termination", err) ||
+        sc_api_check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
+        sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
+        sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
+        sc_api_check_enum(d->method, SC_METHOD_HYBRID + 1, "sc_renderer_desc.method", err) ||
+        sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
+        return SC_FAIL;
+    if (!(d->hull_tolerance >= 0 && d->hull_tolerance < 1))
+        return sc_api_invalid(err, "sc_renderer_desc.hull_tolerance", PROBLEM_RANGE,
+                       "%g (0 for the default, or a fraction of the scene's size below 1)",
+                       d->hull_tolerance);
+    r->hulls.mode = d->hull_split;
+    r->hulls.divisions = d->hull_divisions;
+    r->hulls.tolerance = d->hull_tolerance;
+    r->hulls.max_depth = d->hull_max_depth;
+    r->start = d->start;
+    r->max_iters = d->max_iters;
+    r->view = d->show;
+    r->generic = d->generic != 0;
+    r->unroll_max_degree = d->unroll_max_degree;
+    r->trim_method = d->trim;
+    r->trim_iters = d->trim_iters;
+    r->ert = d->termination;
+    r->order = d->order;
+    r->batch_hulls = d->batch_hulls;
+    r->gpu_memory_budget = d->gpu_memory_budget;
+    r->method = d->method;
+    return SC_OK;
+}
+
+void sc_api_destroy_renderer_object(renderer_object *r)
+{
+    if (sc_api_make_current(r->context, NULL) == SC_OK)
+        sc_renderer_destroy(r->renderer);
+    if (r->scene)   /* NULL for a packed renderer */
+        sc_api_release_scene(r->scene);
+    free(r);
 }

@@ -17,6 +17,7 @@
 #include "audit.h"
 #include "emit_glsl.h"
 #include "gl_context.h"
+#include "gl_pack.h"
 #include "gl_render.h"
 #include "imgdiff.h"
 #include "io.h"
@@ -41,6 +42,7 @@ typedef enum problem {
     PROBLEM_CAMERA,
     PROBLEM_CONTEXT,
     PROBLEM_TERRAIN_SOURCE,
+    PROBLEM_NOT_APP_CONTEXT,
 } problem;
 
 /* "WHAT PROBLEM: detail" into err; returns SC_FAIL. */
@@ -119,6 +121,13 @@ int sc_terrain_degree(const sc_scene *scene);
  * only when it changes. */
 extern context_object *sc_api_current_context;
 int sc_api_make_current(context_object *c, sc_error *err);
+/* A public renderer desc checked and turned into the internal one. */
+int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *err);
+/* sc_make_renderer with desc->pack (api_pack.c). */
+int sc_api_make_packed_renderer(context_object *c, sc_scene_id scene,
+                                const sc_renderer_desc *desc, sc_renderer_id *out,
+                                sc_error *err);
+void sc_api_destroy_renderer_object(renderer_object *r);
 /* A renderer stopped drawing the scene: frees it once its handle is gone too. */
 void sc_api_release_scene(scene_object *s);
 /* Copies n key texts into keys (at most capacity) and sets *count. */

@@ -5,6 +5,8 @@
  * handles and checks in api_objects.c. */
 #include "api_private.h"
 
+#include "gl_state.h"
+
 /* ---- contexts and programs ---- */
 
 int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *err)
@@ -19,14 +21,20 @@ int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *e
         return SC_FAIL;
     sc_gl_context_desc gl_desc = {.backend = desc->backend, .debug = desc->debug};
     context_object *c = sc_alloc(1, sizeof *c);
-    if (sc_gl_context_create(&gl_desc, &c->gl, err) != SC_OK) {
+    if ((desc->get_proc_address
+             ? sc_gl_context_wrap((sc_gl_app_get_proc_fn)desc->get_proc_address, &c->gl, err)
+             : sc_gl_context_create(&gl_desc, &c->gl, err)) != SC_OK) {
         sc_api_current_context = NULL;  /* a failed attempt may have changed it */
         free(c);
         return SC_FAIL;
     }
-    sc_api_current_context = c;  /* creating made it current */
+    /* Creating made one of the library's current; the application's is
+     * its own business (sc_api_make_current). */
+    sc_api_current_context = sc_gl_context_is_app(c->gl) ? NULL : c;
     c->programs = sc_program_cache_create(sc_gl_context_gl(c->gl));
-    if ((out->id = sc_api_pool_insert(&sc_api_contexts, c, err)) == 0) {
+    if (sc_program_cache_set_sources(c->programs, desc->programs_dir, desc->generate_missing != 0,
+                                     desc->binary_cache_dir, err) != SC_OK ||
+        (out->id = sc_api_pool_insert(&sc_api_contexts, c, err)) == 0) {
         sc_program_cache_destroy(c->programs);
         sc_gl_context_destroy(c->gl);
         sc_api_current_context = NULL;
@@ -36,13 +44,6 @@ int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *e
     return SC_OK;
 }
 
-static void destroy_renderer_object(renderer_object *r)
-{
-    if (sc_api_make_current(r->context, NULL) == SC_OK)
-        sc_renderer_destroy(r->renderer);
-    sc_api_release_scene(r->scene);
-    free(r);
-}
 
 void sc_destroy_context(sc_context_id ctx)
 {
@@ -53,7 +54,7 @@ void sc_destroy_context(sc_context_id ctx)
         renderer_object *r = sc_api_renderers.slots[i].object;
         if (r && r->context == c) {
             sc_api_pool_remove(&sc_api_renderers, sc_api_slot_id(&sc_api_renderers, i));
-            destroy_renderer_object(r);
+            sc_api_destroy_renderer_object(r);
         }
     }
     for (int i = 0; i < sc_api_programs.count; i++) {
@@ -132,48 +133,6 @@ int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error
 
 /* ---- renderers ---- */
 
-static int render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *err)
-{
-    memset(r, 0, sizeof *r);
-    if (sc_api_check_enum(d->hull_split, SC_SPLIT_UNIFORM + 1, "sc_renderer_desc.hull_split", err) ||
-        sc_api_check_int(d->hull_divisions, 0, SC_MAX_HULL_DIVISIONS, "sc_renderer_desc.hull_divisions", err) ||
-        sc_api_check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
-        sc_api_check_enum(d->start, SC_START_VIEW + 1, "sc_renderer_desc.start", err) ||
-        sc_api_check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
-        sc_api_check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
-        sc_api_check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
-                  err) ||
-        sc_api_check_enum(d->trim, SC_TRIM_NONE + 1, "sc_renderer_desc.trim", err) ||
-        sc_api_check_enum(d->termination, SC_TERMINATION_MANUAL_BOTH + 1,
-                   "sc_renderer_desc.termination", err) ||
-        sc_api_check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
-        sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
-        sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
-        sc_api_check_enum(d->method, SC_METHOD_HYBRID + 1, "sc_renderer_desc.method", err) ||
-        sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
-        return SC_FAIL;
-    if (!(d->hull_tolerance >= 0 && d->hull_tolerance < 1))
-        return sc_api_invalid(err, "sc_renderer_desc.hull_tolerance", PROBLEM_RANGE,
-                       "%g (0 for the default, or a fraction of the scene's size below 1)",
-                       d->hull_tolerance);
-    r->hulls.mode = d->hull_split;
-    r->hulls.divisions = d->hull_divisions;
-    r->hulls.tolerance = d->hull_tolerance;
-    r->hulls.max_depth = d->hull_max_depth;
-    r->start = d->start;
-    r->max_iters = d->max_iters;
-    r->view = d->show;
-    r->generic = d->generic != 0;
-    r->unroll_max_degree = d->unroll_max_degree;
-    r->trim_method = d->trim;
-    r->trim_iters = d->trim_iters;
-    r->ert = d->termination;
-    r->order = d->order;
-    r->batch_hulls = d->batch_hulls;
-    r->gpu_memory_budget = d->gpu_memory_budget;
-    r->method = d->method;
-    return SC_OK;
-}
 
 int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
                      sc_renderer_id *out, sc_error *err)
@@ -183,9 +142,11 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
         return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
     out->id = 0;
     context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, err);
+    if (c && desc && desc->pack)
+        return sc_api_make_packed_renderer(c, scene, desc, out, err);
     scene_object *s = c ? sc_api_pool_get(&sc_api_scenes, scene.id, err) : NULL;
     sc_render_desc internal;
-    if (!s || render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
+    if (!s || sc_api_render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
         sc_api_make_current(c, err) != SC_OK)
         return SC_FAIL;
     /* The context's cache: sc_make_program on the renderer's keys returns
@@ -201,7 +162,7 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
     }
     s->users++;
     if ((out->id = sc_api_pool_insert(&sc_api_renderers, r, err)) == 0) {
-        destroy_renderer_object(r);
+        sc_api_destroy_renderer_object(r);
         return SC_FAIL;
     }
     return SC_OK;
@@ -213,7 +174,7 @@ void sc_destroy_renderer(sc_renderer_id renderer)
     if (!r)
         return;
     sc_api_pool_remove(&sc_api_renderers, renderer.id);
-    destroy_renderer_object(r);
+    sc_api_destroy_renderer_object(r);
 }
 
 int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, int *count,
@@ -222,7 +183,7 @@ int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, 
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     if (!r)
         return SC_FAIL;
-    int nsurfaces = r->scene->scene.nsurfaces, n = 0;
+    int nsurfaces = sc_renderer_scene(r->renderer)->nsurfaces, n = 0;
     char (*texts)[SCG_KEY_MAX] = sc_alloc((size_t)(nsurfaces ? nsurfaces : 1), SCG_KEY_MAX);
     for (int s = 0; s < nsurfaces; s++) {
         scg_key_format(sc_renderer_surface_key(r->renderer, s), texts[n], SCG_KEY_MAX);
@@ -257,6 +218,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .culled_hulls = stats.culled_hulls,
         .readbacks = stats.readbacks,
     };
+    sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);
     return SC_OK;
 }
 
@@ -331,10 +293,38 @@ int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err
 {
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     sc_camera cam;
-    if (!r || make_camera(camera, &r->scene->scene, &cam, err) != SC_OK ||
+    if (!r || make_camera(camera, sc_renderer_scene(r->renderer), &cam, err) != SC_OK ||
         sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
-    return sc_renderer_draw(r->renderer, &cam, err);
+    /* In an application's context the renderer's own target is drawn, and
+     * what that changes is put back. */
+    sc_gl_state saved;
+    int app = sc_gl_context_is_app(r->context->gl);
+    const sc_gl *gl = sc_gl_context_gl(r->context->gl);
+    if (app)
+        sc_gl_state_save(gl, &saved);
+    int status = sc_renderer_draw(r->renderer, &cam, err);
+    if (app)
+        sc_gl_state_restore(gl, &saved);
+    return status;
+}
+
+int sc_draw_gl(sc_renderer_id renderer, const sc_gl_draw_desc *desc, sc_error *err)
+{
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    if (!r)
+        return SC_FAIL;
+    if (!desc)
+        return sc_api_invalid(err, "desc", PROBLEM_NULL, NULL);
+    if (!sc_gl_context_is_app(r->context->gl))
+        return sc_api_invalid(err, "renderer", PROBLEM_NOT_APP_CONTEXT,
+                              "sc_draw_gl draws into an application's context "
+                              "(sc_context_desc.get_proc_address); use sc_draw or sc_render");
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(desc->view[i]) || !isfinite(desc->projection[i]))
+            return sc_api_invalid(err, "sc_gl_draw_desc", PROBLEM_CAMERA,
+                                  "%s[%d] is not finite", isfinite(desc->view[i]) ? "projection" : "view", i);
+    return sc_renderer_draw_app(r->renderer, desc->view, desc->projection, err);
 }
 
 /* The frame of the renderer's last draw; render_ms is the caller's. */
@@ -344,7 +334,15 @@ static int read_frame(renderer_object *r, double render_ms, sc_frame_id *out, sc
         return SC_FAIL;
     frame_object *f = sc_alloc(1, sizeof *f);
     sc_image image = {0};
-    if (sc_renderer_read(r->renderer, &image, &f->aov, err) != SC_OK) {
+    sc_gl_state saved;
+    int app = sc_gl_context_is_app(r->context->gl);
+    const sc_gl *gl = sc_gl_context_gl(r->context->gl);
+    if (app)
+        sc_gl_state_save(gl, &saved);
+    int status = sc_renderer_read(r->renderer, &image, &f->aov, err);
+    if (app)
+        sc_gl_state_restore(gl, &saved);
+    if (status != SC_OK) {
         sc_image_free(&image);
         sc_aov_free(&f->aov);
         free(f);

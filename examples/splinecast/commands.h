@@ -27,6 +27,7 @@ int cmd_bench(int argc, char **argv);
 int cmd_terrain(int argc, char **argv);
 int cmd_splines(int argc, char **argv);
 int cmd_pick(int argc, char **argv);
+int cmd_pack(int argc, char **argv);
 /* `bench --trim-table` (bench_trim.c). */
 int bench_trim_table(int argc, char **argv);
 /* `bench --stability` (bench_stability.c). */

@@ -19,6 +19,7 @@ static const command commands[] = {
     {"terrain", cmd_terrain, "ray cast the quartic spline of a height grid on the GPU"},
     {"splines", cmd_splines, "the quartic spline of a height grid; Table I error"},
     {"pick", cmd_pick, "the surface, (u, v), point and normal under an image point"},
+    {"pack", cmd_pack, "write a scene's GPU data (records, trims, hulls, keys) to one file"},
 };
 
 static void usage(FILE *f)

@@ -47,6 +47,8 @@ struct sc_gl_context {
     osmesa_make_current_fn osmesa_make_current;
     osmesa_get_proc_fn osmesa_get_proc;
     unsigned char osmesa_dummy[4]; /* OSMesa binds a buffer; we draw to FBOs */
+    /* An application's context */
+    sc_gl_app_get_proc_fn app_get_proc;
 };
 
 
@@ -394,8 +396,34 @@ void sc_gl_context_destroy(sc_gl_context *ctx)
     free(ctx);
 }
 
+static sc_gl_proc app_get_proc(const char *name, void *user)
+{
+    return ((sc_gl_context *)user)->app_get_proc(name);
+}
+
+int sc_gl_context_wrap(sc_gl_app_get_proc_fn get_proc, sc_gl_context **out, sc_error *err)
+{
+    *out = NULL;
+    sc_gl_context *ctx = sc_alloc(1, sizeof *ctx);
+    ctx->app_get_proc = get_proc;
+    ctx->backend = SC_BACKEND_DEFAULT;
+    if (sc_gl_load(&ctx->gl, app_get_proc, ctx, GL_MAJOR_REQUIRED, GL_MINOR_REQUIRED, err) !=
+        SC_OK) {
+        free(ctx);
+        return SC_FAIL;
+    }
+    snprintf(ctx->description, sizeof ctx->description, "application %s",
+             (const char *)ctx->gl.GetString(GL_RENDERER));
+    *out = ctx;
+    return SC_OK;
+}
+
+int sc_gl_context_is_app(const sc_gl_context *ctx) { return ctx->app_get_proc != NULL; }
+
 int sc_gl_context_make_current(sc_gl_context *ctx, sc_error *err)
 {
+    if (ctx->app_get_proc)
+        return SC_OK;   /* the application makes its context current */
     if (ctx->backend == SC_BACKEND_EGL) {
         /* EGL and OSMesa share Mesa's dispatch library, and EGL skips a
          * make-current of the context it believes current: release first, so

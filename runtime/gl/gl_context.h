@@ -17,6 +17,17 @@ typedef struct sc_gl_context_desc {
 
 typedef struct sc_gl_context sc_gl_context;
 
+/* An application's GetProcAddress (eglGetProcAddress, glXGetProcAddressARB,
+ * glfwGetProcAddress, SDL's with a cast, …). */
+typedef sc_gl_proc (*sc_gl_app_get_proc_fn)(const char *name);
+
+/* The application's context, current now, its GL table resolved through
+ * get_proc: the library never makes it current, installs no debug callback
+ * in it and does not destroy it. Its backend is SC_BACKEND_DEFAULT. */
+int sc_gl_context_wrap(sc_gl_app_get_proc_fn get_proc, sc_gl_context **out, sc_error *err);
+/* Whether ctx is an application's (sc_gl_context_wrap). */
+int sc_gl_context_is_app(const sc_gl_context *ctx);
+
 /* Creates the context and makes it current. */
 int sc_gl_context_create(const sc_gl_context_desc *desc, sc_gl_context **out,
                          sc_error *err);

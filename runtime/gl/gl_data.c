@@ -213,7 +213,11 @@ int sc_gpu_data_build_from(const sc_gl *gl, const sc_scene *scene,
         memcpy(t, a.trims, (size_t)a.ntrims * 4 * sizeof(float));
     }
     GLint max_texels = 0;
-    gl->GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    /* Without a context (a pack written at build time) the layout's own limit. */
+    if (gl)
+        gl->GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    else
+        max_texels = 1 << 24;
     int most = a.npoints > a.nrecords ? a.npoints : a.nrecords;
     if (a.nknots > most)
         most = a.nknots;
@@ -369,9 +373,9 @@ void sc_gpu_data_bind(const sc_gl *gl, const sc_gpu_data *data)
 
 void sc_gpu_data_free(const sc_gl *gl, sc_gpu_data *data)
 {
-    if (data->textures[0])
+    if (data->textures[0] && gl)
         gl->DeleteTextures(SCG_TEXTURE_COUNT, data->textures);
-    if (data->buffers[0])
+    if (data->buffers[0] && gl)
         gl->DeleteBuffers(SCG_TEXTURE_COUNT, data->buffers);
     for (int t = 0; t < SCG_TEXTURE_COUNT; t++)
         free(data->staged[t]);

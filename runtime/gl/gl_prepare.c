@@ -16,7 +16,7 @@
 /* The key of one surface (scene_keys.h): its degrees, rationality and
  * trims, the render's start, iterations and outputs; the generic program
  * above the unrolling limit, or everywhere when asked. */
-static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key)
+void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key)
 {
     sc_key_options opts = {
         .generic_above = desc->unroll_max_degree,
@@ -40,7 +40,7 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key
 /* The origin hulls are rasterised relative to: the middle of their box
  * when the renderer is made, kept thereafter, so that a surface update
  * rewrites the vertices of that surface alone. */
-static void set_raster_origin(sc_renderer *r)
+void sc_prepare_raster_origin(sc_renderer *r)
 {
     const sc_hulls *h = &r->hulls;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -57,7 +57,7 @@ static void set_raster_origin(sc_renderer *r)
  * verts[0]: relative to their record's centre (hull.vert), in the
  * parameters of their record's program: local [0, 1]² of the Bézier patch
  * for `bez` records, the surface's own for `nurbs`. */
-static void fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex *verts)
+void sc_prepare_fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex *verts)
 {
     const sc_hulls *h = &r->hulls;
     int base = count ? h->subpatches[first].first_vertex : 0;
@@ -101,7 +101,7 @@ static size_t colour_buffer_bytes(const sc_scene *scene)
 
 /* The GPU data the whole scene needs: patch data (built, r->data.bytes),
  * hulls and colours; what an out-of-memory message names. */
-static size_t scene_gpu_bytes(const sc_renderer *r)
+size_t sc_prepare_gpu_bytes(const sc_renderer *r)
 {
     size_t vbytes, ibytes;
     hull_buffer_bytes(&r->hulls, &vbytes, &ibytes);
@@ -112,10 +112,18 @@ static size_t scene_gpu_bytes(const sc_renderer *r)
  * of a frame sized for them. */
 static int upload_hulls(sc_renderer *r, sc_error *err)
 {
-    const sc_gl *gl = r->gl;
     const sc_hulls *h = &r->hulls;
     gpu_vertex *verts = sc_alloc((size_t)(h->nvertices ? h->nvertices : 1), sizeof *verts);
-    fill_vertices(r, 0, h->count, verts);
+    sc_prepare_fill_vertices(r, 0, h->count, verts);
+    int status = sc_prepare_upload_hull_buffers(r, verts, err);
+    free(verts);
+    return status;
+}
+
+int sc_prepare_upload_hull_buffers(sc_renderer *r, const gpu_vertex *verts, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    const sc_hulls *h = &r->hulls;
     if (r->vertex_buffer)
         gl->DeleteBuffers(1, &r->vertex_buffer);
     if (r->index_buffer)
@@ -128,7 +136,6 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     gl->NamedBufferStorage(r->vertex_buffer, (GLsizeiptr)vbytes, verts, GL_DYNAMIC_STORAGE_BIT);
     /* Rewritten every frame in drawing order. */
     gl->NamedBufferStorage(r->index_buffer, (GLsizeiptr)ibytes, NULL, GL_DYNAMIC_STORAGE_BIT);
-    free(verts);
     r->hull_bytes = vbytes + ibytes;
     r->hull_bytes_uploaded = vbytes;
     GLuint vao = r->vertex_array;
@@ -142,7 +149,7 @@ static int upload_hulls(sc_renderer *r, sc_error *err)
     r->inside = sc_realloc(r->inside, count, sizeof *r->inside);
     /* At most one run per hull, plus the inside hulls' runs per group. */
     r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
-    return sc_gl_check_upload(gl, "uploading the hulls", scene_gpu_bytes(r), err);
+    return sc_gl_check_upload(gl, "uploading the hulls", sc_prepare_gpu_bytes(r), err);
 }
 
 /* The vertices of surface s's hulls, rewritten in their range of the
@@ -156,7 +163,7 @@ static int upload_surface_hulls(sc_renderer *r, int s, sc_error *err)
     if (!range->vertex_count)
         return SC_OK;
     gpu_vertex *verts = sc_alloc((size_t)range->vertex_count, sizeof *verts);
-    fill_vertices(r, range->first_subpatch, range->subpatch_count, verts);
+    sc_prepare_fill_vertices(r, range->first_subpatch, range->subpatch_count, verts);
     gl->NamedBufferSubData(r->vertex_buffer,
                            (GLintptr)((size_t)range->first_vertex * sizeof(gpu_vertex)),
                            (GLsizeiptr)r->hull_bytes_uploaded, verts);
@@ -167,7 +174,7 @@ static int upload_surface_hulls(sc_renderer *r, int s, sc_error *err)
 /* One group per distinct program the surfaces are drawn with, in the order
  * the surfaces first ask for it (the keys never change: a surface that
  * would change its key needs a new renderer). */
-static void build_groups(sc_renderer *r)
+void sc_prepare_groups(sc_renderer *r)
 {
     int n = r->scene->nsurfaces;
     r->groups = sc_alloc((size_t)(n ? n : 1), sizeof *r->groups);
@@ -184,7 +191,7 @@ static void build_groups(sc_renderer *r)
 }
 
 /* Each hull's group, after the hulls were (re)built. */
-static void group_hulls(sc_renderer *r)
+void sc_prepare_group_hulls(sc_renderer *r)
 {
     r->hull_group = sc_realloc(r->hull_group, (size_t)(r->hulls.count ? r->hulls.count : 1),
                                sizeof(int));
@@ -205,7 +212,7 @@ static void vertex_attrib(const sc_gl *gl, GLuint vao, GLuint location, int comp
     gl->VertexArrayAttribBinding(vao, location, 0);
 }
 
-static void setup_vertex_array(sc_renderer *r)
+void sc_prepare_vertex_array(sc_renderer *r)
 {
     const sc_gl *gl = r->gl;
     gl->CreateVertexArrays(1, &r->vertex_array);
@@ -215,7 +222,7 @@ static void setup_vertex_array(sc_renderer *r)
 #undef X
 }
 
-static int upload_colours(sc_renderer *r, sc_error *err)
+int sc_prepare_upload_colours(sc_renderer *r, sc_error *err)
 {
     const sc_gl *gl = r->gl;
     int n = r->scene->nsurfaces ? r->scene->nsurfaces : 1;
@@ -230,7 +237,20 @@ static int upload_colours(sc_renderer *r, sc_error *err)
     gl->CreateTextures(GL_TEXTURE_BUFFER, 1, &r->colour_texture);
     gl->TextureBuffer(r->colour_texture, GL_RGBA32F, r->colour_buffer);
     free(colours);
-    return sc_gl_check_upload(gl, "uploading the colours", scene_gpu_bytes(r), err);
+    return sc_gl_check_upload(gl, "uploading the colours", sc_prepare_gpu_bytes(r), err);
+}
+
+void sc_prepare_defaults(sc_renderer *r)
+{
+    if (!r->desc.ert)
+        r->desc.ert = SC_DEFAULT_TERMINATION;
+    /* Hull faces drawn where a ray misses would read as hits nearby. */
+    if (r->desc.view == SC_SHOW_HULL)
+        r->desc.ert = SC_TERMINATION_NONE;
+    if (!r->desc.order)
+        r->desc.order = SC_RENDER_DEFAULT_ORDER;
+    if (r->desc.batch_hulls <= 0)
+        r->desc.batch_hulls = SC_RENDER_DEFAULT_BATCH_HULLS;
 }
 
 int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,
@@ -242,16 +262,8 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     r->gl = gl;
     r->scene = scene;
     r->desc = desc ? *desc : defaults;
-    if (!r->desc.ert)
-        r->desc.ert = SC_DEFAULT_TERMINATION;
-    /* Hull faces drawn where a ray misses would read as hits nearby. */
-    if (r->desc.view == SC_SHOW_HULL)
-        r->desc.ert = SC_TERMINATION_NONE;
     r->manhattan = scene->terrain && !r->desc.order;
-    if (!r->desc.order)
-        r->desc.order = SC_RENDER_DEFAULT_ORDER;
-    if (r->desc.batch_hulls <= 0)
-        r->desc.batch_hulls = SC_RENDER_DEFAULT_BATCH_HULLS;
+    sc_prepare_defaults(r);
     int n = scene->nsurfaces;
     r->keys = sc_alloc((size_t)(n ? n : 1), sizeof *r->keys);
     r->kinds = sc_alloc((size_t)(n ? n : 1), sizeof *r->kinds);
@@ -262,7 +274,7 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     for (int s = 0; s < n; s++) {
         if (sc_surface_drawable(scene, s, err) != SC_OK)
             goto fail;
-        surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
+        sc_prepare_surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
         if (scene->terrain) {   /* its stand-in surface: the terrain's key */
             scg_key like = r->keys[s];
             sc_tri_key(scene->terrain, &like, &r->keys[s]);
@@ -289,7 +301,7 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
         goto fail;
     /* Weighed before anything is sent, so that a refused scene leaves no
      * buffer behind, half filled or not. */
-    size_t needed = scene_gpu_bytes(r);
+    size_t needed = sc_prepare_gpu_bytes(r);
     if (r->desc.gpu_memory_budget && needed > r->desc.gpu_memory_budget) {
         char cause[96];
         snprintf(cause, sizeof cause, "the GPU memory budget is %zu bytes",
@@ -299,12 +311,12 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     }
     if (sc_gpu_data_send(gl, &r->data, needed, err) != SC_OK)
         goto fail;
-    setup_vertex_array(r);
-    set_raster_origin(r);
-    if (upload_colours(r, err) != SC_OK || upload_hulls(r, err) != SC_OK)
+    sc_prepare_vertex_array(r);
+    sc_prepare_raster_origin(r);
+    if (sc_prepare_upload_colours(r, err) != SC_OK || upload_hulls(r, err) != SC_OK)
         goto fail;
-    build_groups(r);
-    group_hulls(r);
+    sc_prepare_groups(r);
+    sc_prepare_group_hulls(r);
     r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded + r->colour_bytes;
     *out = r;
     return SC_OK;
@@ -320,6 +332,8 @@ void sc_renderer_destroy(sc_renderer *r)
     const sc_gl *gl = r->gl;
     if (r->nearest_texture)
         gl->DeleteTextures(1, &r->nearest_texture);
+    if (r->app_nearest)
+        gl->DeleteTextures(1, &r->app_nearest);
     sc_gl_target_destroy(gl, &r->target);
     sc_gpu_data_free(gl, &r->data);
     GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};
@@ -335,6 +349,10 @@ void sc_renderer_destroy(sc_renderer *r)
     sc_hulls_free(&r->hulls);
     for (int s = 0; r->patches && s < r->scene->nsurfaces; s++)
         sc_patch_list_free(&r->patches[s]);
+    if (r->own_scene) {
+        sc_scene_free(r->own_scene);
+        free(r->own_scene);
+    }
     free(r->patches);
     free(r->groups);
     free(r->surface_group);
@@ -364,7 +382,7 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     if (sc_surface_drawable(r->scene, surface, err) != SC_OK)
         return SC_FAIL;
     scg_key key;
-    surface_key(&r->scene->surfaces[surface], &r->desc, &key);
+    sc_prepare_surface_key(&r->scene->surfaces[surface], &r->desc, &key);
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
     sc_patch_list old = r->patches[surface];
@@ -387,7 +405,7 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     } else {
         if (upload_hulls(r, err) != SC_OK)
             return SC_FAIL;
-        group_hulls(r);
+        sc_prepare_group_hulls(r);
     }
     r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded;
     return SC_OK;

@@ -309,48 +309,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     depth_range(r, cam->eye, fwd, &znear, &zfar);
     float view[16], proj[16], vp[16];
     sc_camera_gl_matrices(cam, znear, zfar, view, proj);
-    /* The camera moved to the origin: the programs project points relative
-     * to the eye (hull.vert), never world coordinates. */
-    view[12] = view[13] = view[14] = 0;
-    for (int col = 0; col < 4; col++)
-        for (int row = 0; row < 4; row++) {
-            double sum = 0;
-            for (int k = 0; k < 4; k++)
-                sum += (double)proj[k * 4 + row] * view[col * 4 + k];
-            vp[col * 4 + row] = (float)sum;
-        }
+    sc_render_eye_projection(view, proj, vp);
     float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
-    float eye[3], eye_low[3], raster_eye[3];
-    for (int c = 0; c < 3; c++) {
-        eye[c] = (float)cam->eye[c];
-        eye_low[c] = (float)(cam->eye[c] - eye[c]);
-        raster_eye[c] = (float)(cam->eye[c] - r->raster_origin[c]);
-    }
-
-    /* Hulls holding the eye go first (their hits may lie anywhere in front
-     * of the other hulls), grouped by program; then the others in the
-     * order of the policy. */
-    const sc_hulls *h = &r->hulls;
-    int ninside = 0, n = 0;
-    for (int k = 0; k < h->count; k++) {
-        double d = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, cam->eye);
-        if (d == 0 && sc_hull_contains(h, k, cam->eye))
-            r->inside[ninside++] = k;
-        else
-            r->items[n++] = (sort_item){.distance = d, .hull = k};
-    }
-    /* A terrain's prisms in sets of one Manhattan distance from the
-     * square under the eye (seed 004, section VII): a set's prisms do not
-     * overlap on screen, and each set is one batch that sees the hits of
-     * the sets in front of it. */
-    for (int i = 0; r->manhattan && i < n; i++)
-        r->items[i].major =
-            sc_tri_manhattan(r->scene->terrain, h->subpatches[r->items[i].hull].patch, cam->eye);
-    order_hulls(r, n);
-    for (int i = 0; i < ninside; i++)
-        if (r->desc.ert != SC_TERMINATION_NONE &&
-            inside_program(r, r->hull_group[r->inside[i]], err) != SC_OK)
-            return SC_FAIL;
 
     float bg = background_linear();
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
@@ -362,6 +322,66 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear);
+    int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
+    gl->Disable(GL_FRAMEBUFFER_SRGB);
+    gl->Finish();
+    if (status != SC_OK)
+        return SC_FAIL;
+    return sc_gl_check(gl, "drawing the hulls", err);
+}
+
+void sc_render_eye_projection(const float view[16], const float proj[16], float vp[16])
+{
+    /* The camera moved to the origin: the programs project points relative
+     * to the eye (hull.vert), never world coordinates. For a rigid view
+     * [R | -R·eye], R·(p - eye) is the view of p. */
+    float rot[16];
+    memcpy(rot, view, sizeof rot);
+    rot[12] = rot[13] = rot[14] = 0;
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double sum = 0;
+            for (int k = 0; k < 4; k++)
+                sum += (double)proj[k * 4 + row] * rot[col * 4 + k];
+            vp[col * 4 + row] = (float)sum;
+        }
+}
+
+int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[3],
+                    const float vp[16], float footprint, int manual, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    float eye[3], eye_low[3], raster_eye[3];
+    for (int c = 0; c < 3; c++) {
+        eye[c] = (float)eye_world[c];
+        eye_low[c] = (float)(eye_world[c] - eye[c]);
+        raster_eye[c] = (float)(eye_world[c] - r->raster_origin[c]);
+    }
+    /* Hulls holding the eye go first (their hits may lie anywhere in front
+     * of the other hulls), grouped by program; then the others in the
+     * order of the policy. */
+    const sc_hulls *h = &r->hulls;
+    int ninside = 0, n = 0;
+    for (int k = 0; k < h->count; k++) {
+        double d = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, eye_world);
+        if (d == 0 && sc_hull_contains(h, k, eye_world))
+            r->inside[ninside++] = k;
+        else
+            r->items[n++] = (sort_item){.distance = d, .hull = k};
+    }
+    /* A terrain's prisms in sets of one Manhattan distance from the
+     * square under the eye (seed 004, section VII): a set's prisms do not
+     * overlap on screen, and each set is one batch that sees the hits of
+     * the sets in front of it. */
+    for (int i = 0; r->manhattan && i < n; i++)
+        r->items[i].major =
+            sc_tri_manhattan(r->scene->terrain, h->subpatches[r->items[i].hull].patch, eye_world);
+    order_hulls(r, n);
+    for (int i = 0; i < ninside; i++)
+        if (r->desc.ert != SC_TERMINATION_NONE &&
+            inside_program(r, r->hull_group[r->inside[i]], err) != SC_OK)
+            return SC_FAIL;
+
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     gl->Enable(GL_CULL_FACE);
@@ -428,10 +448,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     }
     if (manual)
         gl->BindTextureUnit(SCG_UNIT_NEAREST_T, 0);
-    gl->Disable(GL_FRAMEBUFFER_SRGB);
-    gl->Finish();
-    return sc_gl_check(gl, "drawing the hulls", err);
+    return SC_OK;
 }
+
 
 /* A float channel to an 8-bit grey level, black for misses. */
 static void grey_view(const sc_aov *aov, const float *values, int stride, int normal_view,

@@ -85,6 +85,13 @@ void sc_renderer_destroy(sc_renderer *r);
 
 /* Draws one frame for cam (its size is the image size) and waits for it. */
 int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err);
+/* Draws into the framebuffer bound in the current context (an
+ * application's) with its viewport, depth buffer and matrices (column-major
+ * float[16]: world to eye; a perspective projection), writing the hits'
+ * depth; the GL state it changes is restored (gl_state.h). Nothing is
+ * waited for or read back. */
+int sc_renderer_draw_app(sc_renderer *r, const float view[16], const float proj[16],
+                         sc_error *err);
 /* The last frame: the image of the view (RGBA, allocated here) and, when
  * aov is not NULL, its AOVs (allocated here, with iteration counts). */
 int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err);
@@ -107,6 +114,9 @@ int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err);
 int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err);
 
 void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats);
+/* The scene the renderer draws: a packed renderer's stand-in (gl_pack.h),
+ * whose surfaces have their colours and the scene's box alone. */
+const sc_scene *sc_renderer_scene(const sc_renderer *r);
 /* The key surface s is drawn with. */
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface);
 

@@ -132,12 +132,53 @@ struct sc_renderer {
     double raster_origin[3]; /* what hull vertices are rasterised relative to */
     float *cosine;           /* per pixel: cosine of its ray to the view direction */
     double cosine_fovy;      /* the field of view they are for (0: none yet) */
+    /* sc_nearest_t for draws into an application's framebuffer (gl_embed.c):
+     * far everywhere, app_nearest_w × app_nearest_h tiles. */
+    GLuint app_nearest;
+    int app_nearest_w, app_nearest_h;
+    sc_scene *own_scene;     /* a packed renderer's stand-in scene (gl_pack.c):
+                                its surfaces' colours alone */
 };
+
+/* ---- preparation steps gl_prepare.c and gl_pack.c share ---- */
+
+/* The key of surface s under the renderer's desc (generic where asked). */
+void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key);
+/* The origin hulls are rasterised relative to: the middle of their box. */
+void sc_prepare_raster_origin(sc_renderer *r);
+/* The GPU vertices of hulls [first, first + count) (r->hulls, r->data's
+ * records and centres, r->kinds, r->raster_origin). */
+void sc_prepare_fill_vertices(const sc_renderer *r, int first, int count, gpu_vertex *verts);
+/* New vertex (verts, r->hulls.nvertices of them) and index buffers, and
+ * the frame's scratch sized for r->hulls. */
+int sc_prepare_upload_hull_buffers(sc_renderer *r, const gpu_vertex *verts, sc_error *err);
+void sc_prepare_vertex_array(sc_renderer *r);
+int sc_prepare_upload_colours(sc_renderer *r, sc_error *err);
+/* One group per distinct program of r->surface_program; each hull's. */
+void sc_prepare_groups(sc_renderer *r);
+void sc_prepare_group_hulls(sc_renderer *r);
+/* The GPU bytes the renderer needs: patch data, hulls, colours. */
+size_t sc_prepare_gpu_bytes(const sc_renderer *r);
+/* r->desc's defaults filled in (termination, order, batch size). */
+void sc_prepare_defaults(sc_renderer *r);
 
 static inline int manual_ert(sc_ray_termination mode)
 {
     return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
 }
+
+/* The camera's view-projection moved to the origin (what the programs'
+ * sc_view_projection is): proj × view with view's translation dropped. */
+void sc_render_eye_projection(const float view[16], const float proj[16], float vp[16]);
+
+/* Draws every hull into the bound framebuffer with the depth test, the
+ * programs' uniforms set from the eye (world space, double), vp
+ * (sc_render_eye_projection) and footprint (2·tan(fovy/2) / image height);
+ * fwd is the view direction. manual: batches that read back the nearest
+ * distances between them (the renderer's own target only). gl_render.c's
+ * frames and gl_embed.c's draws into an application's framebuffer. */
+int sc_render_hulls(sc_renderer *r, const double eye[3], const double fwd[3], const float vp[16],
+                    float footprint, int manual, sc_error *err);
 
 /* sRGB 0.2, the reference images' background (shade.c), in linear light:
  * the colour attachment is sRGB, so the GL encodes it on the way in. */

@@ -8,7 +8,9 @@
 #include <string.h>
 
 #include "emit_glsl.h"
+#include "gl_binary_cache.h"
 #include "glslang_check.h"
+#include "programs_dir.h"
 
 typedef struct entry {
     char key_text[SCG_KEY_MAX];
@@ -28,6 +30,10 @@ struct sc_program_cache {
     entry *entries;
     int nvertex, cap_vertex;
     vertex_shader *vertex;
+    /* Where programs come from besides the compiler (sc_program_cache_set_sources). */
+    sc_programs_dir *dir;
+    int generate_missing;
+    sc_binary_cache *binary;
 };
 
 sc_program_cache *sc_program_cache_create(const sc_gl *gl)
@@ -47,7 +53,20 @@ void sc_program_cache_destroy(sc_program_cache *cache)
         cache->gl->DeleteShader(cache->vertex[i].shader);
     free(cache->entries);
     free(cache->vertex);
+    sc_programs_dir_close(cache->dir);
+    sc_binary_cache_close(cache->binary);
     free(cache);
+}
+
+int sc_program_cache_set_sources(sc_program_cache *cache, const char *glsl_dir,
+                                 int generate_missing, const char *binary_dir, sc_error *err)
+{
+    if (glsl_dir && sc_programs_dir_open(glsl_dir, &cache->dir, err) != SC_OK)
+        return SC_FAIL;
+    cache->generate_missing = generate_missing;
+    if (binary_dir)
+        cache->binary = sc_binary_cache_open(cache->gl, binary_dir);
+    return SC_OK;
 }
 
 /* Compiles one stage; on failure err gets the driver's log, the line it
@@ -101,6 +120,10 @@ static uint32_t find(const sc_program_cache *cache, const char *text)
     return 0;
 }
 
+static int add_entry(sc_program_cache *cache, const scg_key *key, const char *text,
+                     GLuint program, double gen_ms, double gl_ms, int from_binary,
+                     sc_program *out);
+
 /* Compiles, links and caches; gen_ms is what generating took. */
 static int from_glsl(sc_program_cache *cache, const scg_key *key, const char *text,
                      const char *vertex_name, const char *vertex, const char *fragment,
@@ -108,11 +131,16 @@ static int from_glsl(sc_program_cache *cache, const scg_key *key, const char *te
 {
     const sc_gl *gl = cache->gl;
     double t1 = sc_now();
+    uint64_t source_hash = cache->binary ? sc_binary_cache_source_hash(vertex, fragment) : 0;
+    GLuint program = sc_binary_cache_load(cache->binary, text, source_hash);
+    if (program)
+        return add_entry(cache, key, text, program, gen_ms, 1e3 * (sc_now() - t1), 1, out);
     GLuint vs = vertex_shader_for(cache, vertex_name, vertex, text, err);
     GLuint fs = vs ? compile(gl, GL_FRAGMENT_SHADER, fragment, text, err) : 0;
     if (!fs)
         return SC_FAIL;
-    GLuint program = gl->CreateProgram();
+    program = gl->CreateProgram();
+    sc_binary_cache_prepare(cache->binary, program);
     gl->AttachShader(program, vs);
     gl->AttachShader(program, fs);
     gl->LinkProgram(program);
@@ -131,6 +159,15 @@ static int from_glsl(sc_program_cache *cache, const scg_key *key, const char *te
         return scg_fail_shader_log(err, text, "the driver could not link frag", log, fragment);
     }
     double t2 = sc_now();
+    sc_binary_cache_store(cache->binary, text, source_hash, program);
+    return add_entry(cache, key, text, program, gen_ms, 1e3 * (t2 - t1), 0, out);
+}
+
+/* Caches a linked program; from_binary: loaded from the binary cache. */
+static int add_entry(sc_program_cache *cache, const scg_key *key, const char *text,
+                     GLuint program, double gen_ms, double gl_ms, int from_binary,
+                     sc_program *out)
+{
     if (cache->count == cache->cap) {
         cache->cap = cache->cap ? 2 * cache->cap : 8;
         cache->entries = sc_realloc(cache->entries, (size_t)cache->cap, sizeof *cache->entries);
@@ -140,9 +177,12 @@ static int from_glsl(sc_program_cache *cache, const scg_key *key, const char *te
     e->key = *key;
     e->program = program;
     e->gen_ms = gen_ms;
-    e->gl_ms = 1e3 * (t2 - t1);
-    sc_log(SC_LOG_INFO, "program %s: generated in %.0f ms, compiled in %.0f ms", text, e->gen_ms,
-           e->gl_ms);
+    e->gl_ms = gl_ms;
+    if (from_binary)
+        sc_log(SC_LOG_INFO, "program %s: loaded from the binary cache in %.0f ms", text, gl_ms);
+    else
+        sc_log(SC_LOG_INFO, "program %s: %s in %.0f ms, compiled in %.0f ms", text,
+               gen_ms > 0 ? "generated" : "read", e->gen_ms, e->gl_ms);
     out->id = (uint32_t)cache->count;
     return SC_OK;
 }
@@ -155,6 +195,16 @@ int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *
     if ((out->id = find(cache, text)) != 0)
         return SC_OK;
     double t0 = sc_now();
+    if (cache->dir && (!cache->generate_missing || sc_programs_dir_has(cache->dir, text))) {
+        /* Built at build time: read, not generated (no compiler, no glslang). */
+        char vertex_name[64], *vertex, *fragment;
+        if (sc_programs_dir_load(cache->dir, text, vertex_name, &vertex, &fragment, err) != SC_OK)
+            return SC_FAIL;
+        int status = from_glsl(cache, key, text, vertex_name, vertex, fragment, 0, out, err);
+        free(vertex);
+        free(fragment);
+        return status;
+    }
     scg_generated gen;
     if (scg_generate(key, &gen, err) != SC_OK)
         return SC_FAIL;

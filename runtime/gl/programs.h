@@ -20,6 +20,14 @@ typedef struct sc_program_cache sc_program_cache;
 sc_program_cache *sc_program_cache_create(const sc_gl *gl);
 void sc_program_cache_destroy(sc_program_cache *cache);
 
+/* Where programs come from besides the compiler: glsl_dir, a folder of
+ * `splinecast gen` (programs_dir.h), whose programs are read instead of
+ * generated; a key it lacks fails naming the key unless generate_missing;
+ * binary_dir, linked programs kept on disk (gl_binary_cache.h). Either may
+ * be NULL. Fails when glsl_dir has no readable manifest. */
+int sc_program_cache_set_sources(sc_program_cache *cache, const char *glsl_dir,
+                                 int generate_missing, const char *binary_dir, sc_error *err);
+
 /* The program of `key`: from the cache, or generated, validated, compiled
  * and linked now. A failure names the key (err->key) and, for a rejected
  * program, the compiler's message and the GLSL line it points at. */

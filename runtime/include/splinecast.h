@@ -19,6 +19,12 @@
  *                           precision) → sc_compare_frames
  *   changing a surface      sc_update_surface (renderers of the scene
  *                           rewrite that surface's GPU data alone)
+ *   the application's GL    sc_make_context(.get_proc_address) →
+ *                           sc_draw_gl (its framebuffer, its matrices,
+ *                           depth tested against its own geometry)
+ *   build time to run time  sc_save_pack (`splinecast pack`) + `splinecast
+ *                           gen` → sc_make_renderer(.pack) on a context
+ *                           with .programs_dir and .binary_cache_dir
  *
  * Calls are made from one thread: GL contexts belong to the thread that made
  * them, and the handle pools are not locked. */
@@ -364,15 +370,37 @@ int sc_compare_audits_matching(const sc_audit_text *before, const sc_audit_text 
 typedef struct sc_context_desc {
     sc_backend backend;
     int debug;                 /* a debug context: more driver messages */
+    /* Instead of an offscreen context of the library's own: the
+     * application's OpenGL 4.5 core context, current when sc_make_context
+     * and every later call naming it are made, its functions looked up
+     * through this (eglGetProcAddress, glXGetProcAddressARB,
+     * glfwGetProcAddress, …). The library never makes it current or
+     * destroys it; sc_draw_gl draws into its bound framebuffer. backend and
+     * debug are then ignored. */
+    void (*(*get_proc_address)(const char *name))(void);
+    /* Where the context's programs come from (docs/api.md, "Build time to
+     * run time"). programs_dir: a folder `splinecast gen` wrote; a key is
+     * read from it by its manifest (no generation, no glslang), and a key
+     * the manifest lacks, or a file that is not what the manifest says,
+     * fails naming the key, unless generate_missing is 1 (then generated
+     * as without a folder). binary_cache_dir: linked programs are kept
+     * there (glGetProgramBinary), keyed by key, driver and GLSL, so that a
+     * second start loads instead of compiling; nothing is kept when the
+     * driver has no binary formats. NULL: none. */
+    const char *programs_dir;
+    int generate_missing;
+    const char *binary_cache_dir;
 } sc_context_desc;
 
-/* An offscreen OpenGL 4.5 core context (EGL or OSMesa, loaded at run time). */
+/* An offscreen OpenGL 4.5 core context (EGL or OSMesa, loaded at run time),
+ * or the application's (get_proc_address). */
 int sc_make_context(const sc_context_desc *desc, sc_context_id *out, sc_error *err);
 /* Also destroys the context's programs and renderers. */
 void sc_destroy_context(sc_context_id ctx);
 
 typedef struct sc_context_info {
-    sc_backend backend;        /* the one actually used: EGL or OSMESA */
+    sc_backend backend;        /* the one actually used: EGL or OSMESA
+                                  (DEFAULT for an application's context) */
     char description[256];     /* "egl-surfaceless llvmpipe (…)" etc. */
 } sc_context_info;
 
@@ -431,7 +459,22 @@ typedef struct sc_renderer_desc {
                                   max_iters is the depth of the subdivision
                                   stack (24), with bclip the number of
                                   clipping steps (32); both ignore start */
+    /* Instead of a scene: a file `splinecast pack` (sc_save_pack) wrote,
+     * drawn as it is (docs/pack-format.md); the scene handle is then the
+     * zero handle. The pack fixed keys, hulls and view when it was
+     * written: the fields above that decide them must be zero; order,
+     * batch_hulls, gpu_memory_budget and own_programs apply. */
+    const char *pack;
 } sc_renderer_desc;
+
+/* Writes what a renderer made with desc would upload for the scene —
+ * patch records and trim blocks, hull vertices and indices, each surface's
+ * key and colour — to a pack file (docs/pack-format.md; never
+ * half-written), without a GL context. sc_make_renderer with
+ * sc_renderer_desc.pack draws it; the programs it needs are the keys of
+ * sc_query_scene_keys with the same options. Terrains are refused. */
+int sc_save_pack(sc_scene_id scene, const sc_renderer_desc *desc, const char *path,
+                 sc_error *err);
 
 /* Prepares everything that does not depend on the view: hulls, GPU data
  * and one program per distinct key, taken from the context's program cache
@@ -460,6 +503,9 @@ typedef struct sc_renderer_info {
                                   every pixel they cover (manual modes) */
     int readbacks;             /* reads of the nearest distances so far
                                   (manual modes) */
+    double lo[3], hi[3];       /* the box of the scene's control points (a
+                                  packed renderer's: the packed scene's),
+                                  for framing a view of it */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
@@ -495,6 +541,25 @@ int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id
 int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err);
 /* The image and AOVs of the renderer's last frame (sc_draw first). */
 int sc_read_frame(sc_renderer_id renderer, sc_frame_id *out, sc_error *err);
+
+/* The application's view of one frame (sc_draw_gl): OpenGL's
+ * column-major matrices, as glUniformMatrix4fv takes them. */
+typedef struct sc_gl_draw_desc {
+    float view[16];            /* world to eye (gluLookAt's); required */
+    float projection[16];      /* a perspective projection (gluPerspective's,
+                                  glFrustum's); required */
+} sc_gl_draw_desc;
+
+/* Draws the renderer's scene into the framebuffer bound in the
+ * application's context (sc_context_desc.get_proc_address), in its
+ * viewport, with its view and projection, writing each hit's depth into its
+ * depth buffer through the ordinary depth test (GL_LESS), so that the
+ * surfaces and the application's own geometry hide each other where they
+ * should, whichever is drawn first. Neither clears nor waits. The GL state
+ * it changes is restored (docs/api.md lists it). The colour is linear RGB:
+ * enable GL_FRAMEBUFFER_SRGB on an sRGB framebuffer, as for your own lit
+ * geometry. Needs glClipControl's and glDepthRange's defaults. */
+int sc_draw_gl(sc_renderer_id renderer, const sc_gl_draw_desc *desc, sc_error *err);
 
 typedef struct sc_reference_desc {
     int threads;               /* 0: one per online core */

@@ -1,0 +1,217 @@
+/* packed_gl.c — build time to run time: a program in plain OpenGL (its own
+ * EGL context and framebuffer) draws a scene packed at build time with
+ * programs generated at build time, and never calls the compiler: the
+ * pack holds the GPU data (`splinecast pack`), the folder the GLSL and its
+ * manifest (`splinecast gen`), and linked programs are kept in a binary
+ * cache folder, so that a second start compiles nothing either. Uses only
+ * the installed <splinecast.h>:
+ *
+ *   splinecast gen --scene part.igs -o shaders
+ *   splinecast pack part.igs -o part.pack
+ *   cc packed_gl.c $(pkg-config --cflags --libs splinecast) -o packed_gl
+ *   ./packed_gl part.pack shaders cache out.ppm 512 512
+ *
+ * Prints `first_frame_ms=T` (from the start of main to the first frame
+ * drawn and finished: context, programs, data, frame) and `wrote PATH WxH
+ * covered=N`. CACHE may be `-` for none. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <splinecast.h>
+
+/* The application's GL functions, from its own loader (EGL's here). */
+#define GL_FUNCS(X)                                                                        \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                                           \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                           \
+    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                                         \
+    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                                         \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                                   \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)                           \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                             \
+    X(PFNGLVIEWPORTPROC, Viewport)                                                         \
+    X(PFNGLCLEARCOLORPROC, ClearColor)                                                     \
+    X(PFNGLCLEARPROC, Clear)                                                               \
+    X(PFNGLENABLEPROC, Enable)                                                             \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                       \
+    X(PFNGLCREATESHADERPROC, CreateShader)                                                 \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                                 \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                                               \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                               \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                                                 \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                                   \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                                 \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                                                     \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                     \
+    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                         \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                           \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                           \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                                                     \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                                                     \
+    X(PFNGLBUFFERDATAPROC, BufferData)                                                     \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                           \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                                   \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                     \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                   \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                                                     \
+    X(PFNGLFINISHPROC, Finish)
+#define DECLARE(type, name) static type gl##name;
+GL_FUNCS(DECLARE)
+
+static int fail(const char *what, const sc_error *err)
+{
+    char text[1024];
+    fprintf(stderr, "packed_gl: %s: %s\n", what, err ? sc_error_text(err, text, sizeof text) : "");
+    sc_shutdown();
+    return 1;
+}
+
+/* The application's own context: EGL on Mesa's surfaceless platform. */
+static int make_gl_context(void)
+{
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    EGLDisplay dpy = get_display ? get_display(EGL_PLATFORM_SURFACELESS_MESA,
+                                               EGL_DEFAULT_DISPLAY, NULL)
+                                 : EGL_NO_DISPLAY;
+    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_API))
+        return 0;
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    EGLContext ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    if (ctx == EGL_NO_CONTEXT || !eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx))
+        return 0;
+#define LOAD(type, name) gl##name = (type)eglGetProcAddress("gl" #name);
+    GL_FUNCS(LOAD)
+    return 1;
+}
+
+static void cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void normalize(double v[3])
+{
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int c = 0; c < 3; c++)
+        v[c] /= n;
+}
+
+/* gluLookAt with +z up and gluPerspective, column-major. */
+static void matrices(const double eye[3], const double target[3], double fovy_deg, double aspect,
+                     double znear, double zfar, float view[16], float proj[16])
+{
+    double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+    double up[3] = {0, 0, 1}, s[3], u[3];
+    normalize(f);
+    cross(f, up, s);
+    normalize(s);
+    cross(s, f, u);
+    memset(view, 0, 16 * sizeof *view);
+    for (int c = 0; c < 3; c++) {
+        view[c * 4 + 0] = (float)s[c];
+        view[c * 4 + 1] = (float)u[c];
+        view[c * 4 + 2] = (float)-f[c];
+    }
+    view[12] = (float)-(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]);
+    view[13] = (float)-(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]);
+    view[14] = (float)(f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2]);
+    view[15] = 1;
+    double cot = 1 / tan(0.5 * fovy_deg * 3.14159265358979323846 / 180);
+    memset(proj, 0, 16 * sizeof *proj);
+    proj[0] = (float)(cot / aspect);
+    proj[5] = (float)cot;
+    proj[10] = (float)((zfar + znear) / (znear - zfar));
+    proj[11] = -1;
+    proj[14] = (float)(2 * zfar * znear / (znear - zfar));
+}
+
+int main(int argc, char **argv)
+{
+    double t0 = sc_now();
+    if (argc != 7) {
+        fprintf(stderr, "usage: packed_gl PACK SHADER_DIR CACHE_DIR|- OUT.ppm WIDTH HEIGHT\n");
+        return 2;
+    }
+    int w = atoi(argv[5]), h = atoi(argv[6]);
+    if (w < 1 || h < 1 || w > 4096 || h > 4096) {
+        fprintf(stderr, "packed_gl: WIDTH and HEIGHT must lie in 1..4096\n");
+        return 2;
+    }
+    if (!make_gl_context())
+        return fail("no OpenGL 4.5 core context from EGL", NULL);
+    GLuint fbo, rb[2];
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(2, rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return fail("framebuffer incomplete", NULL);
+    glViewport(0, 0, w, h);
+
+    /* Programs from the gen folder (a key it lacks is an error, not a
+     * compile), linked ones kept in the cache folder. */
+    sc_error err = {0};
+    sc_context_id ctx;
+    sc_context_desc cd = {.get_proc_address = eglGetProcAddress, .programs_dir = argv[2],
+                          .binary_cache_dir = strcmp(argv[3], "-") ? argv[3] : NULL};
+    if (sc_make_context(&cd, &ctx, &err))
+        return fail("sc_make_context", &err);
+    sc_renderer_id renderer;
+    if (sc_make_renderer(ctx, (sc_scene_id){0}, &(sc_renderer_desc){.pack = argv[1]}, &renderer,
+                         &err))
+        return fail("sc_make_renderer", &err);
+
+    /* The view: the pack's box from the front left, above. */
+    sc_renderer_info info;
+    if (sc_query_renderer_info(renderer, &info, &err))
+        return fail("sc_query_renderer_info", &err);
+    double centre[3], size = 0;
+    for (int c = 0; c < 3; c++) {
+        centre[c] = 0.5 * (info.lo[c] + info.hi[c]);
+        size += (info.hi[c] - info.lo[c]) * (info.hi[c] - info.lo[c]);
+    }
+    size = sqrt(size);
+    double eye[3] = {centre[0] + 1.0 * size, centre[1] - 1.4 * size, centre[2] + 0.8 * size};
+    sc_gl_draw_desc frame = {0};
+    matrices(eye, centre, 30, (double)w / h, 0.2 * size, 5 * size, frame.view, frame.projection);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (sc_draw_gl(renderer, &frame, &err))
+        return fail("sc_draw_gl", &err);
+    glFinish();
+    printf("first_frame_ms=%.1f\n", 1e3 * (sc_now() - t0));
+
+    unsigned char *pixels = malloc((size_t)w * (size_t)h * 4);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    long covered = 0;
+    for (long p = 0; p < (long)w * h; p++)
+        covered += pixels[4 * p] || pixels[4 * p + 1] || pixels[4 * p + 2];
+    FILE *f = fopen(argv[4], "wb");
+    if (!f)
+        return fail("cannot write the image", NULL);
+    fprintf(f, "P6\n%d %d\n255\n", w, h);
+    for (int y = h - 1; y >= 0; y--)
+        for (int x = 0; x < w; x++)
+            fwrite(pixels + 4 * ((size_t)y * (size_t)w + (size_t)x), 1, 3, f);
+    if (fclose(f) != 0)
+        return fail("cannot write the image", NULL);
+    printf("wrote %s %dx%d covered=%ld\n", argv[4], w, h, covered);
+    free(pixels);
+    sc_shutdown();
+    return 0;
+}
