@@ -100,7 +100,11 @@ int sc_pack_build(const sc_scene *scene, const sc_render_desc *desc, sc_pack *ou
     out->view = (uint32_t)r->desc.view;
     out->termination = (uint32_t)r->desc.ert;
     memcpy(out->raster_origin, r->raster_origin, sizeof out->raster_origin);
-    sc_scene_bounds(scene, out->lo, out->hi);
+    /* What the default view of the scene frames, so that a packed
+     * renderer's default view is the scene's (trimmed faces by what they
+     * keep). */
+    if (!sc_scene_view_bounds(scene, out->lo, out->hi))
+        sc_scene_bounds(scene, out->lo, out->hi);
     free_unsent(r);
     return SC_OK;
 }

@@ -503,9 +503,10 @@ typedef struct sc_renderer_info {
                                   every pixel they cover (manual modes) */
     int readbacks;             /* reads of the nearest distances so far
                                   (manual modes) */
-    double lo[3], hi[3];       /* the box of the scene's control points (a
-                                  packed renderer's: the packed scene's),
-                                  for framing a view of it */
+    double lo[3], hi[3];       /* the box the default view frames: control
+                                  points of untrimmed surfaces, the kept
+                                  region of trimmed ones (a packed
+                                  renderer's: the packed scene's) */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
