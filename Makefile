@@ -195,9 +195,11 @@ FUZZ_LIB_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(FUZZ_LIB_SRC)) $(BUILD)/embedded_sc
 # (fuzz_step fuzzes the pre-scan and, behind it, the library).
 FUZZ_CXX     ?= clang++-14
 FUZZ_LIBS    = -lpng -lm
+FUZZ_LINK    = $(CC)
 ifeq ($(HAVE_OCCT),1)
 FUZZ_LIB_OBJ += $(BUILD)/runtime/io/step_occt.o
 FUZZ_LIBS    += $(OCCT_LIBS)
+FUZZ_LINK    = $(CXX)
 endif
 FUZZ_SAN     = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
                -fno-omit-frame-pointer
@@ -208,7 +210,7 @@ fuzz: deps
 	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) CXX=$(FUZZ_CXX) OPT=-O1 SAN="$(FUZZ_SAN)" \
 	  $(patsubst %,$(FUZZ_BUILD)/fuzz_%,$(FUZZ_NAMES))
 $(BUILD)/fuzz_%: $(BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_LIB_OBJ)
-	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(FUZZ_LIBS)
+	$(FUZZ_LINK) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(FUZZ_LIBS)
 fuzz-smoke: fuzz
 	@for n in $(FUZZ_NAMES); do \
 	  scratch=$$(mktemp -d) && \

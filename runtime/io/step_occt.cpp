@@ -520,7 +520,7 @@ void face_props(const TopoDS_Face &f, sc_occt_face *out)
 {
     memset(out, 0, sizeof *out);
     GProp_GProps props;
-    BRepGProp::SurfaceProperties(f, props);
+    BRepGProp::SurfaceProperties(f, props, 1e-6);
     out->area = props.Mass();
     gp_Pnt c = props.CentreOfMass();
     out->centroid[0] = c.X();
