@@ -25,7 +25,7 @@ static void usage(FILE *f)
                "Ray casts trimmed NURBS and spline surfaces on the GPU.\n\ncommands:\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
-    fprintf(f, "\nA SCENE is a .bpt, .obj or .igs/.iges file, or `teapot` for the "
+    fprintf(f, "\nA SCENE is a .bpt, .obj, .igs/.iges or .stp/.step file, or `teapot` for the "
                "embedded 32-patch teapot.\n");
 }
 

@@ -188,7 +188,9 @@ bool transfer(const char *text, size_t size, const char *name, deadline_progress
     }
     doc = new TDocStd_Document("XmlXCAF");
     XCAFDoc_DocumentTool::Set(doc->Main(), false);
-    Handle(Message_ProgressIndicator) keep = progress;
+    /* a file with no shapes at all is an empty scene, not an error */
+    if (reader.ChangeReader().NbRootsForTransfer() == 0)
+        return true;
     bool ok = reader.Transfer(doc, progress->Start());
     if (progress->UserBreak()) {
         char buf[96];

@@ -230,7 +230,8 @@ static int scan_simple_record(scanner *sc, int data, int *face)
             k++;
         len = k - sc->i;
     }
-    if (len == 0)
+    char c0 = sc->i < sc->n ? sc->s[sc->i] : 0;
+    if (len == 0 || !((c0 >= 'A' && c0 <= 'Z') || (c0 >= 'a' && c0 <= 'z') || c0 == '!'))
         return fail(sc, sc->line, "expected an entity name");
     if (face && (keyword_is(sc, len, "ADVANCED_FACE") || keyword_is(sc, len, "FACE_SURFACE")))
         *face = 1;
