@@ -99,12 +99,18 @@ TEST(step_scan_refuses_malformed_files)
         {"DATA;\n#1=A(.T);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "enumeration value"},
         {"DATA;\n#1=A(\"0G\");\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "binary value"},
         {"DATA;\n#1=A(1);\n/* open\nENDSEC;\n", NULL, 9, "comment `/*` is never closed"},
-        {"DATA;\n#1=A(1 @);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "unexpected character `@`"},
+        {"DATA;\n#1=A(@);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "unexpected character `@`"},
         {"DATA;\n#1=(1);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "expected an entity name"},
         {"DATA;\n#1=();\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "complex instance with no records"},
         {"DATA;\n#1=A(1);\nENDSEC;\nEND-ISO-10303-21;\nmore\n", NULL, 11,
          "text after `END-ISO-10303-21;`"},
         {"END-ISO-10303-21;\n", NULL, 7, "no DATA section"},
+        {"DATA;\n#1=A('Control Po'itn,1);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8,
+         "expected `,` or `)` after a parameter"},
+        {"DATA;\n#1=A(1,,2);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "missing parameter before `,`"},
+        {"DATA;\n#1=A(1,);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "missing parameter before `)`"},
+        {"DATA;\n#1=A(B);\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8,
+         "expected `(` after a typed parameter's name"},
         {"DATA;\n#1=A(1);\x01\nENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "control character 0x01"},
         {"DATA;\n#1=A(((((((((((((((((((((((((((((((((((1)))))))))))))))))))))))))))))))))));\n"
          "ENDSEC;\nEND-ISO-10303-21;\n", NULL, 8, "nested more than 32 deep"},
@@ -377,4 +383,31 @@ TEST(step_cli_info_render_and_errors)
         CHECK(fail <= 0.1);
     }
     free(out);
+}
+
+/* A well-formed file whose B-spline curve lists a DIRECTION among its
+ * control points: Open CASCADE dereferences a null handle on it. The
+ * reader's child process dies, and the read fails with a message while
+ * the caller goes on (step_isolate.c). */
+TEST(step_library_crash_becomes_an_error)
+{
+    NEED_OCCT();
+    REQUIRE_DATA("step/bug3883_xr2-ct-214_bolt.stp");
+    char *text = slurp(test_data("step/bug3883_xr2-ct-214_bolt.stp"));
+    char *at = strstr(text, "#84,#85,#86,#87");
+    CHECK(at != NULL);
+    CHECK(strstr(text, "#34=DIRECTION(") != NULL);
+    if (!at) {
+        free(text);
+        return;
+    }
+    memcpy(at + 8, "#34", 3);
+    sc_scene s;
+    sc_error err;
+    CHECK_INT(sc_read_step(text, strlen(text), "wrong_type.stp", &s, &err), SC_FAIL);
+    CHECK_STR(err.file, "wrong_type.stp");
+    CHECK_INT(err.line, 0);
+    CHECK_CONTAINS(err.message, "Open CASCADE failed on this file");
+    CHECK_INT(s.nsurfaces, 0);
+    free(text);
 }

@@ -1,7 +1,8 @@
 /* read_step.c — the STEP reader's C side: the limits every STEP file
  * passes before a library sees it (size cap, our pre-scan of the exchange
  * structure), then Open CASCADE's transfer and our conversion
- * (step_occt.cpp) in a build that has it, and the common end of a read. */
+ * (step_occt.cpp) in a child process (step_isolate.c) in a build that has
+ * it, and the common end of a read. */
 #include "io.h"
 #include "step.h"
 
@@ -17,7 +18,8 @@ int sc_read_step(const char *text, size_t size, const char *name, sc_scene *scen
     if (sc_step_scan_text(text, size, name, &scan, err))
         return sc_finish_read(SC_FAIL, name, scene);
 #ifdef SC_HAVE_OCCT
-    int status = sc_occt_read_step(text, size, name, &scan, SC_STEP_MAX_SECONDS, scene, err);
+    int status = sc_step_read_isolated(text, size, name, &scan, SC_STEP_MAX_SECONDS, scene,
+                                       err);
 #else
     int status = sc_fail(err, name, 0, "built without STEP support (Open CASCADE was not found "
                          "when splinecast was built; docs/step.md)");

@@ -48,6 +48,13 @@ int sc_step_line_of(const sc_step_scan *scan, int id);
 int sc_read_step(const char *text, size_t size, const char *name, sc_scene *scene,
                  sc_error *err);
 
+/* sc_occt_read_step in a child process (step_isolate.c): a crash of the
+ * library, its memory and the time cap end the child, not the caller,
+ * and become errors "name: ...". */
+int sc_step_read_isolated(const char *text, size_t size, const char *name,
+                          const sc_step_scan *scan, double max_seconds, sc_scene *scene,
+                          sc_error *err);
+
 /* ---- the Open CASCADE part (step_occt.cpp) ---- */
 #ifdef __cplusplus
 extern "C" {

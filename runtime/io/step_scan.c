@@ -135,6 +135,9 @@ static int read_id(scanner *sc, int *id)
 static int scan_params(scanner *sc, int start_line, int data)
 {
     int depth = 1;
+    /* after a whole parameter only `,` or `)` may follow; `after_open`:
+     * just after a `(`, where `)` closes an empty list */
+    int need_sep = 0, after_open = 1;
     while (depth > 0) {
         if (skip_space(sc))
             return SC_FAIL;
@@ -142,14 +145,33 @@ static int scan_params(scanner *sc, int start_line, int data)
             return fail(sc, start_line, "record is never closed: `)` or `;` missing before the "
                         "end of the file");
         char c = sc->s[sc->i];
+        if (c == ')') {
+            if (!need_sep && !after_open)
+                return fail(sc, sc->line, "missing parameter before `)`");
+            depth--;
+            sc->i++;
+            need_sep = 1, after_open = 0;
+            continue;
+        }
+        if (c == ',') {
+            if (!need_sep)
+                return fail(sc, sc->line, "missing parameter before `,`");
+            sc->i++;
+            need_sep = 0, after_open = 0;
+            continue;
+        }
+        if (c == ';')
+            return fail(sc, start_line, "record is not closed: `;` before its last `)`");
+        if (need_sep)
+            return fail(sc, sc->line, "expected `,` or `)` after a parameter");
+        after_open = 0;
+        need_sep = 1;
         if (c == '(') {
             if (++depth > SC_STEP_MAX_NESTING)
                 return sc_fail(sc->err, sc->name, sc->line, "parameters nested more than %d deep",
                                SC_STEP_MAX_NESTING);
             sc->i++;
-        } else if (c == ')') {
-            depth--;
-            sc->i++;
+            need_sep = 0, after_open = 1;
         } else if (c == '\'') {
             int sline = sc->line;
             sc->i++;
@@ -176,16 +198,10 @@ static int scan_params(scanner *sc, int start_line, int data)
             if (sc->i >= sc->n || sc->s[sc->i] != '"')
                 return fail(sc, sc->line, "binary value is not closed by `\"` (hex digits only)");
             sc->i++;
-        } else if (c == '.') {
-            /* an enumeration .NAME. or a number like .5 */
+        } else if (c == '.' && sc->i + 1 < sc->n && !(sc->s[sc->i + 1] >= '0' &&
+                                                     sc->s[sc->i + 1] <= '9')) {
+            /* an enumeration .NAME. */
             size_t k = sc->i + 1;
-            if (k < sc->n && sc->s[k] >= '0' && sc->s[k] <= '9') {
-                sc->i = k;
-                while (sc->i < sc->n && (is_word(sc->s[sc->i]) || sc->s[sc->i] == '.' ||
-                                         sc->s[sc->i] == '+'))
-                    sc->i++;
-                continue;
-            }
             while (k < sc->n && is_word(sc->s[k]))
                 k++;
             if (k >= sc->n || sc->s[k] != '.' || k == sc->i + 1)
@@ -198,16 +214,22 @@ static int scan_params(scanner *sc, int start_line, int data)
             if (read_id(sc, &id))
                 return SC_FAIL;
             push(&sc->ref_id, &sc->ref_line, &sc->nref, &sc->capref, id, sc->line);
-        } else if (c == ',' || c == '$' || c == '*') {
+        } else if (c == '$' || c == '*') {
             sc->i++;
-        } else if (is_word(c) || c == '+' || c == '!') {
-            /* a number or the keyword of a typed parameter */
+        } else if (is_word(c) || c == '+' || c == '.' || c == '!') {
+            /* a number, or the keyword of a typed parameter KEYWORD(...) */
+            int letter = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '!';
             sc->i++;
             while (sc->i < sc->n && (is_word(sc->s[sc->i]) || sc->s[sc->i] == '.' ||
                                      sc->s[sc->i] == '+'))
                 sc->i++;
-        } else if (c == ';') {
-            return fail(sc, start_line, "record is not closed: `;` before its last `)`");
+            if (letter) {
+                if (skip_space(sc))
+                    return SC_FAIL;
+                if (sc->i >= sc->n || sc->s[sc->i] != '(')
+                    return fail(sc, sc->line, "expected `(` after a typed parameter's name");
+                need_sep = 0;
+            }
         } else {
             return sc_fail(sc->err, sc->name, sc->line, "unexpected character `%c` in a record",
                            c);
