@@ -12,6 +12,7 @@ extern "C" {
 #include "step.h"
 }
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -290,6 +291,44 @@ void free_curves(std::vector<sc_curve> &cs)
     cs.clear();
 }
 
+/* End point (end = 1) or start point of a 2-D curve, as (u, v). */
+void curve_end(const sc_curve *c, int end, double p[2])
+{
+    const double *q = c->cp + 3 * (end ? c->ncp - 1 : 0);
+    p[0] = q[0] / q[2];
+    p[1] = q[1] / q[2];
+}
+
+void move_end(sc_curve *c, int end, const double p[2])
+{
+    double *q = c->cp + 3 * (end ? c->ncp - 1 : 0);
+    q[0] = p[0] * q[2];
+    q[1] = p[1] * q[2];
+}
+
+/* Consecutive p-curves of a wire meet within the library's edge
+ * tolerances, not exactly: gaps up to SNAP of the domain's size are
+ * closed here by moving both ends to their middle (clamped curves end at
+ * their end control points), so that loop validation warns only about
+ * real gaps. */
+const double SNAP = 1e-7;
+
+void close_small_gaps(std::vector<sc_curve> &cs, double size)
+{
+    for (size_t k = 0; k < cs.size(); k++) {
+        sc_curve *a = &cs[k], *b = &cs[(k + 1) % cs.size()];
+        double pa[2], pb[2];
+        curve_end(a, 1, pa);
+        curve_end(b, 0, pb);
+        double gap = std::hypot(pa[0] - pb[0], pa[1] - pb[1]);
+        if (gap > 0 && gap <= SNAP * size) {
+            double mid[2] = {0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])};
+            move_end(a, 1, mid);
+            move_end(b, 0, mid);
+        }
+    }
+}
+
 /* The trim loops of face `f` (already converted) into `s`: each wire one
  * loop, the outer wire not a hole. A wire whose curves cannot be had is
  * left out with its reason in `why`; then the face is skipped. */
@@ -331,6 +370,9 @@ bool face_loops(const TopoDS_Face &f, sc_surface *s, sc_budget *budget, const ch
                 why = "a wire has no edges";
             return false;
         }
+        double u0 = s->knots_u[s->deg_u], u1 = s->knots_u[s->nu];
+        double v0 = s->knots_v[s->deg_v], v1 = s->knots_v[s->nv];
+        close_small_gaps(curves, std::max(u1 - u0, v1 - v0));
         sc_loop l;
         l.is_hole = w.IsSame(outer) ? 0 : 1;
         l.ncurves = (int)curves.size();
