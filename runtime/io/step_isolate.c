@@ -134,6 +134,16 @@ static void run_child(int fd, const char *text, size_t size, const char *name,
                       const sc_step_scan *scan, double max_seconds)
 {
     child_fd = fd;
+    /* A crash of the library ends the child plainly, with its signal:
+     * handlers the caller installed (a sanitizer's, a fuzzer's that writes
+     * a crash file) are for the caller's own faults. */
+    static const int faults[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP};
+    for (size_t i = 0; i < sizeof faults / sizeof faults[0]; i++) {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = SIG_DFL;
+        sigaction(faults[i], &sa, NULL);
+    }
 #ifndef UNDER_ASAN
     struct rlimit lim = {CHILD_ADDRESS_SPACE, CHILD_ADDRESS_SPACE};
     setrlimit(RLIMIT_AS, &lim);
