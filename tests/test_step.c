@@ -365,12 +365,27 @@ TEST(step_cli_info_render_and_errors)
     sc_error e;
     CHECK_INT(sc_save_text(bad, t, strlen(t), &e), SC_OK);
     free(t);
+    t = NULL;
     snprintf(cmd, sizeof cmd, "%s info %s", test_cli, bad);
     CHECK(test_run(cmd, NULL, &err) != 0);
     char want[600];
     snprintf(want, sizeof want, "%s:8: reference to #2", bad);
     CHECK_CONTAINS(err, want);
     free(err);
+    /* a well-formed file with no shapes: nothing to draw is a failure */
+    char empty[512];
+    snprintf(empty, sizeof empty, "%s/empty.stp", test_tmpdir());
+    t = with_head("DATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n");
+    CHECK_INT(sc_save_text(empty, t, strlen(t), &e), SC_OK);
+    free(t);
+    snprintf(cmd, sizeof cmd, "%s render %s -o %s/empty.png --size 16x16", test_cli, empty,
+             test_tmpdir());
+    err = NULL;
+    CHECK_INT(test_run(cmd, NULL, &err), 1);
+    CHECK_CONTAINS(err, "has nothing to draw (surfaces 0");
+    free(err);
+    snprintf(cmd, sizeof cmd, "%s/empty.png", test_tmpdir());
+    CHECK(access(cmd, F_OK) != 0);
     snprintf(cmd, sizeof cmd, "%s render %s -o %s/screw.png --size 96x96 --frames 1 --ref",
              test_cli, test_data("step/screw.step"), test_tmpdir());
     CHECK_INT(test_run(cmd, &out, NULL), 0);

@@ -165,6 +165,19 @@ int cmd_render(int argc, char **argv)
         sc_destroy_scene(scene);
         return cli_usage_error("render", "--camera: %s", err.message);
     }
+    /* A scene with nothing to draw would give an empty image that looks
+     * like a success. */
+    sc_scene_info scene_info;
+    if (sc_query_scene_info(scene, &scene_info, &err) != SC_OK) {
+        sc_destroy_scene(scene);
+        return cli_report(&err);
+    }
+    if (scene_info.surfaces == 0) {
+        fprintf(stderr, "splinecast render: %s has nothing to draw (surfaces 0; "
+                "`splinecast info` lists what was skipped)\n", scene_path);
+        sc_destroy_scene(scene);
+        return 1;
+    }
 
     int status = 1;
     sc_context_id ctx = {0};
