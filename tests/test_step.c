@@ -13,6 +13,7 @@
 
 #include "io.h"
 #include "nurbs.h"
+#include "splinecast.h"
 #include "step.h"
 
 static const char step_head[] =
@@ -424,5 +425,25 @@ TEST(step_library_crash_becomes_an_error)
     CHECK_INT(err.line, 0);
     CHECK_CONTAINS(err.message, "Open CASCADE failed on this file");
     CHECK_INT(s.nsurfaces, 0);
+    free(text);
+}
+
+/* The public API reads STEP from memory too, the name's extension picking
+ * the reader. */
+TEST(step_api_scene_from_memory)
+{
+    NEED_OCCT();
+    REQUIRE_DATA("step/trj7_c2-ug-214.stp");
+    char *text = slurp(test_data("step/trj7_c2-ug-214.stp"));
+    int faces = count_entities(text, "ADVANCED_FACE");
+    sc_scene_id scene;
+    sc_error err;
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.text = text, .size = strlen(text),
+                                             .name = "mem.STEP"}, &scene, &err), SC_OK);
+    sc_scene_info info;
+    CHECK_INT(sc_query_scene_info(scene, &info, &err), SC_OK);
+    CHECK_INT(info.surfaces, faces);
+    CHECK_INT(info.trimmed_surfaces, faces);
+    sc_destroy_scene(scene);
     free(text);
 }
