@@ -23,7 +23,7 @@ LIBS    = -lpng -lqhull_r $(GLSLANG_LIBS) -lEGL -ldl -lpthread -lm
 DEB_PACKAGES = build-essential pkg-config libpng-dev libqhull-dev glslang-dev glslang-tools \
                libosmesa6-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
                libglu1-mesa-dev khronos-api gnuplot-nox occt-misc clang-14 libclang-rt-14-dev \
-               libglfw3-dev xvfb xauth
+               libglfw3-dev xvfb xauth libocct-data-exchange-dev libocct-modeling-algorithms-dev
 
 # The layers, lowest first (docs/README.md). Each folder is compiled with the
 # include paths of the layers it may use and no others, so that a header
@@ -78,6 +78,29 @@ CLI_OBJ  = $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 # its file names, and run the stability suite as `bench --stability` does.
 TEST_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC)) $(BUILD)/examples/splinecast/options.o \
            $(BUILD)/examples/splinecast/cli.o $(BUILD)/examples/splinecast/stability.o
+
+# STEP files through Open CASCADE (docs/step.md): its part
+# (runtime/io/step_occt.cpp) is built when its headers and libraries are
+# found (`make deps` installs them); without them reading a .stp/.step file
+# fails with "built without STEP support". HAVE_OCCT=0 builds without.
+CXX       ?= g++
+OCCT_INC  ?= /usr/include/opencascade
+HAVE_OCCT ?= $(shell test -f $(OCCT_INC)/STEPCAFControl_Reader.hxx && \
+               test -f "$$($(CXX) -print-file-name=libTKXDESTEP.so)" && echo 1)
+OCCT_LIBS = -lTKXDESTEP -lTKXDEIGES -lTKXCAF -lTKSTEP -lTKIGES -lTKXSBase -lTKVCAF -lTKCAF \
+            -lTKLCAF -lTKCDF -lTKBool -lTKShHealing -lTKTopAlgo -lTKGeomAlgo -lTKBRep \
+            -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel -lstdc++
+CXXFLAGS  ?= $(OPT) -g
+CXXFLAGS  += -std=c++17 -Wall -Wextra -Wno-unused-parameter -MMD -MP $(INC) -isystem $(OCCT_INC) \
+             $(SAN)
+ifeq ($(HAVE_OCCT),1)
+CFLAGS   += -DSC_HAVE_OCCT
+LIB_OBJ  += $(BUILD)/runtime/io/step_occt.o
+LIBS     += $(OCCT_LIBS)
+endif
+$(BUILD)/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -c $< -o $@
 
 LIB  = $(BUILD)/libsplinecast.a
 CLI  = $(BUILD)/splinecast
@@ -169,16 +192,26 @@ FUZZ_NAMES   = $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_LIB_SRC = $(wildcard gen/base/*.c runtime/model/*.c runtime/io/*.c) gen/key.c \
                runtime/terrain/heights.c
 FUZZ_LIB_OBJ = $(patsubst %.c,$(BUILD)/%.o,$(FUZZ_LIB_SRC)) $(BUILD)/embedded_scenes.o
+# With Open CASCADE the readers' targets reach it through the STEP reader
+# (fuzz_step fuzzes the pre-scan and, behind it, the library).
+FUZZ_CXX     ?= clang++-14
+FUZZ_LIBS    = -lpng -lm
+FUZZ_LINK    = $(CC)
+ifeq ($(HAVE_OCCT),1)
+FUZZ_LIB_OBJ += $(BUILD)/runtime/io/step_occt.o
+FUZZ_LIBS    += $(OCCT_LIBS)
+FUZZ_LINK    = $(CXX)
+endif
 FUZZ_SAN     = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
                -fno-omit-frame-pointer
 $(BUILD)/tests/fuzz/%.o: INC = $(INC_IO) $(INC_GEN) -Iruntime/terrain
 .PRECIOUS: $(BUILD)/tests/fuzz/%.o
 fuzz: deps
 	@command -v $(FUZZ_CC) >/dev/null || { echo "fuzz: $(FUZZ_CC) is missing (make deps)" >&2; exit 1; }
-	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) OPT=-O1 SAN="$(FUZZ_SAN)" \
+	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) CXX=$(FUZZ_CXX) OPT=-O1 SAN="$(FUZZ_SAN)" \
 	  $(patsubst %,$(FUZZ_BUILD)/fuzz_%,$(FUZZ_NAMES))
 $(BUILD)/fuzz_%: $(BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_LIB_OBJ)
-	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ -lpng -lm
+	$(FUZZ_LINK) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(FUZZ_LIBS)
 fuzz-smoke: fuzz
 	@for n in $(FUZZ_NAMES); do \
 	  scratch=$$(mktemp -d) && \

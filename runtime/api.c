@@ -10,6 +10,7 @@
  * translated. Every problem with an argument is reported through one list
  * of messages. */
 #include "api_private.h"
+#include "step.h"
 #include "trim_pack.h"
 
 _Static_assert(SC_KEY_SIZE == SCG_KEY_MAX, "public and internal key sizes differ");
@@ -41,6 +42,8 @@ static int read_scene_text(const sc_scene_desc *desc, sc_scene *scene, sc_error 
         return sc_read_obj(desc->text, desc->size, name, scene, err);
     if (has_extension(name, ".igs") || has_extension(name, ".iges"))
         return sc_read_iges(desc->text, desc->size, name, scene, err);
+    if (has_extension(name, ".stp") || has_extension(name, ".step"))
+        return sc_read_step(desc->text, desc->size, name, scene, err);
     return sc_api_invalid(err, "sc_scene_desc.name", PROBLEM_SCENE_NAME, "'%s'", name);
 }
 

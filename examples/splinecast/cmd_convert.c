@@ -10,7 +10,7 @@
 static const char usage[] =
     "usage: splinecast convert SCENE -o OUT.obj\n"
     "\n"
-    "Reads SCENE (.bpt, .obj, .igs/.iges, or `teapot`) and writes OUT.obj\n"
+    "Reads SCENE (.bpt, .obj, .igs/.iges, .stp/.step, or `teapot`) and writes OUT.obj\n"
     "(rational B-spline surfaces, trim loops as curv2 + trim/hole, transforms\n"
     "baked in) and OUT.mtl (one material per colour). Prints:\n"
     "  surfaces N\n"

@@ -12,7 +12,7 @@
 static const char usage[] =
     "usage: splinecast info SCENE\n"
     "\n"
-    "Reads SCENE (.bpt, .obj, .igs/.iges, or `teapot`) and prints:\n"
+    "Reads SCENE (.bpt, .obj, .igs/.iges, .stp/.step, or `teapot`) and prints:\n"
     "  surfaces N\n"
     "  surface I deg P Q rational 0|1 ctrl NU NV loops L segments S   (one per surface;\n"
     "                             S counts the trim curves over all L loops)\n"

@@ -12,7 +12,7 @@
 static const char usage[] =
     "usage: splinecast ref SCENE -o OUT.png [view options] [--threads N] [--stats]\n"
     "\n"
-    "Ray casts SCENE (.bpt, .obj, .igs/.iges, or `teapot`) on the CPU in double\n"
+    "Ray casts SCENE (.bpt, .obj, .igs/.iges, .stp/.step, or `teapot`) on the CPU in double\n"
     "precision (object-space subdivision to floating-point precision, exact trimming)\n"
     "and writes a shaded PNG to OUT.png and the AOV file (surface id, u v, distance,\n"
     "point, normal facing the viewer) beside it, which `diff` reads: the extension\n"

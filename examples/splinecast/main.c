@@ -29,7 +29,7 @@ static void usage(FILE *f)
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
     fprintf(f, "\n  --version  print the version\n");
-    fprintf(f, "\nA SCENE is a .bpt, .obj or .igs/.iges file, or `teapot` for the "
+    fprintf(f, "\nA SCENE is a .bpt, .obj, .igs/.iges or .stp/.step file, or `teapot` for the "
                "embedded 32-patch teapot.\n");
 }
 

@@ -60,7 +60,8 @@ void sc_shutdown(void);
 
 /* Zero means default: the embedded 32-patch teapot. */
 typedef struct sc_scene_desc {
-    const char *path;      /* .bpt, .obj (free-form) or .igs/.iges, by extension;
+    const char *path;      /* .bpt, .obj (free-form), .igs/.iges or .stp/.step
+                              (docs/step.md), by extension;
                               "teapot": the embedded teapot */
     const char *text;      /* instead of path: the file's bytes in memory */
     size_t size;           /* bytes of text */

@@ -1,6 +1,8 @@
 /* read_scene.c — the front door of the readers: a scene by file name (the
  * extension picks the reader) and the embedded default teapot. */
 #include "io.h"
+#include "envelope.h"
+#include "step.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,14 +36,19 @@ int sc_read_scene(const char *path, sc_scene *scene, sc_error *err)
         reader = sc_read_obj;
     else if (has_extension(path, ".igs") || has_extension(path, ".iges"))
         reader = sc_read_iges;
+    else if (has_extension(path, ".stp") || has_extension(path, ".step"))
+        reader = sc_read_step;
     if (!reader) {
         sc_scene_init(scene);
-        return sc_fail(err, path, 0, "unknown scene type: expected a .bpt, .obj, .igs or .iges "
-                       "file, or `teapot`");
+        return sc_fail(err, path, 0, "unknown scene type: expected a .bpt, .obj, .igs, .iges, "
+                       ".stp or .step file, or `teapot`");
     }
     char *data;
     size_t size;
-    if (sc_read_file(path, &data, &size, err)) {
+    /* A STEP file is capped lower (its library's model is large) and
+     * before it is read whole. */
+    size_t cap = reader == sc_read_step ? SC_STEP_MAX_FILE_BYTES : SC_MAX_FILE_BYTES;
+    if (sc_read_file_max(path, cap, 0, &data, &size, err)) {
         sc_scene_init(scene);
         return SC_FAIL;
     }
