@@ -94,6 +94,8 @@ struct sc_renderer {
     sc_render_desc desc;
     scg_key *keys;           /* per surface */
     scg_patch_kind *kinds;   /* per surface */
+    sc_accuracy_choice *choices; /* per surface, from desc.accuracy; NULL
+                                without a target */
     sc_program *surface_program;
     sc_program_cache *programs;
     int own_programs;        /* the cache is the renderer's (not desc.programs) */
