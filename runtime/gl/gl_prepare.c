@@ -39,6 +39,48 @@ static void surface_key(const sc_surface *s, const sc_render_desc *desc,
 }
 
 
+/* Surfaces that share a program under the defaults share one under an
+ * accuracy target too: each takes the most iterations and the smallest
+ * tolerance chosen for any of them, so that a target never compiles more
+ * programs, nor switches between more, than the defaults (their hulls stay
+ * their own). */
+static void share_programs(sc_renderer *r)
+{
+    int n = r->scene->nsurfaces, ngroups = 0;
+    scg_key *base = sc_alloc((size_t)(n ? n : 1), sizeof *base);
+    int *group_of = sc_alloc((size_t)(n ? n : 1), sizeof *group_of);
+    sc_accuracy_choice *shared = sc_alloc((size_t)(n ? n : 1), sizeof *shared);
+    for (int s = 0; s < n; s++) {
+        if (sc_surface_drawable(r->scene, s, NULL) != SC_OK) {
+            group_of[s] = -1;
+            continue;
+        }
+        scg_key key;
+        surface_key(&r->scene->surfaces[s], &r->desc, NULL, &key);
+        int g = 0;
+        while (g < ngroups && !scg_key_equal(&base[g], &key))
+            g++;
+        const sc_accuracy_choice *c = &r->choices[s];
+        if (g == ngroups) {
+            base[ngroups++] = key;
+            shared[g] = *c;
+        }
+        if (c->max_iters > shared[g].max_iters)
+            shared[g].max_iters = c->max_iters;
+        if (c->tol_milli < shared[g].tol_milli)
+            shared[g].tol_milli = c->tol_milli;
+        group_of[s] = g;
+    }
+    for (int s = 0; s < n; s++)
+        if (group_of[s] >= 0) {
+            r->choices[s].max_iters = shared[group_of[s]].max_iters;
+            r->choices[s].tol_milli = shared[group_of[s]].tol_milli;
+        }
+    free(base);
+    free(group_of);
+    free(shared);
+}
+
 /* The origin hulls are rasterised relative to: the middle of their box
  * when the renderer is made, kept thereafter, so that a surface update
  * rewrites the vertices of that surface alone. */
@@ -272,6 +314,7 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     if (r->desc.accuracy.px > 0 && !scene->terrain) {
         r->choices = sc_alloc((size_t)(n ? n : 1), sizeof *r->choices);
         sc_accuracy_choose(scene, r->patches, &r->desc.accuracy, r->desc.method, r->choices);
+        share_programs(r);
     }
     double t0 = sc_now();
     for (int s = 0; s < n; s++) {

@@ -11,11 +11,11 @@
  *   iteration stops on a step below SCG_STOP_FRACTION · tol · footprint,
  *   that step taken (one more); so k iterations suffice where
  *   R (h/R)^(2^k) ≤ 0.3 tol fp;
- * - the hull flatness is the largest h with k ≤ NEWTON_STEPS, and no more
- *   than a sub-patch whose normals turn by CONE_RAD can have
- *   (h = CONE_RAD² R / 8, the sagitta of an arc of that angle): a sub-patch
- *   that bends further holds two crossings of a ray, and Newton finds the
- *   wrong one.
+ * - the hulls are the defaults', made finer only where their start would
+ *   need more than NEWTON_STEPS iterations or lie more than RHO_MAX · R
+ *   off (outside the quadratic model); the iteration cap is then the
+ *   bound's count from the hull's start, plus the converged step and a
+ *   margin.
  * The footprint is taken at the surface's nearest distance to the eye (its
  * control points' box), the smallest it has in the view; R comes from the
  * flatness of the control net (patch_radius). */
@@ -26,22 +26,22 @@
 #include <stdlib.h>
 
 #include "bezier.h"
+#include "hulls.h"
 #include "intersect.h"
 
-/* The widest turn of the normals over one sub-patch. On the teapot at
- * 512² (docs/accuracy.md) hulls whose arcs turned by up to 0.6 rad failed
- * no more pixels than the default hulls, 1.2 rad left 0.5 % of the pixels
- * on a farther crossing. */
-#define CONE_RAD 1.0
-/* Newton iterations a hull is sized for: one hybrid pass (3 steps, the
- * converged one included) lands from its start (gen/hybrid.c). */
-#define NEWTON_STEPS 2
+/* The largest start error, as a fraction of the radius: the quadratic
+ * model e' = e²/R shrinks the error only while e < R. */
+#define RHO_MAX 1.0
+/* Newton iterations a hull may need from its start: with the converged
+ * step and the margin, the defaults' 6 (SCG_DEFAULT_ITERS), so that a
+ * target never asks for more iterations than the defaults run. */
+#define NEWTON_STEPS 4
 /* Iterations beyond the bound's count: the start's error and the
  * convergence constant are estimates. */
 #define ITER_MARGIN 1
 /* The coarsest hulls an accuracy target chooses, as a fraction of the
- * scene's size: flat surfaces need no splitting at all. */
-#define MAX_HULL_FRACTION 0.25
+ * scene's size: the defaults' (hulls.h). */
+#define HULL_CEILING SC_HULL_DEFAULT_TOLERANCE
 
 const char *sc_accuracy_check(double px, double normal_deg)
 {
@@ -69,7 +69,8 @@ static void net_point(const sc_bezier_patch *p, int i, int j, double out[3])
  * L² / (8·sag) + sag / 2. The net sags at least as far as the surface, so this is no
  * more than the surface's radius along that row. *len gets L. HUGE_VAL for
  * a straight row or one collapsed to a point. */
-static double row_radius(const sc_bezier_patch *p, int dir, int line, double *len)
+static double row_radius(const sc_bezier_patch *p, int dir, int line, double *len,
+                         double *sagged)
 {
     int n = dir == 0 ? p->deg_u : p->deg_v;
     double a[3], b[3], chord[3];
@@ -87,26 +88,31 @@ static double row_radius(const sc_bezier_patch *p, int dir, int line, double *le
         double along = l > 0 ? dot3(d, chord) / l : 0;
         sag = fmax(sag, sqrt(fmax(0, dot3(d, d) - along * along)));
     }
+    *sagged = sag;
     if (!(sag > 0) || !(l > 0))
         return HUGE_VAL;
     return l * l / (8 * sag) + sag / 2;
 }
 
-/* The smallest radius over the rows and columns of the patch's net,
+/* The smallest radius over the rows and columns of the patch's net (and
+ * in *flatness the largest sag of any row, at least as far as the patch
+ * is from flat),
  * leaving out rows shorter than ROW_SHORT of the longest in their
  * direction: near a pole (the teapot's lid and bottom) the rows shrink to
  * small circles about it whose bend lies in the tangent plane, not across
  * the surface. */
 #define ROW_SHORT 0.25
-static double patch_radius(const sc_bezier_patch *p)
+static double patch_radius(const sc_bezier_patch *p, double *flatness)
 {
     double r = HUGE_VAL;
     for (int dir = 0; dir < 2; dir++) {
         int lines = dir == 0 ? p->deg_v + 1 : p->deg_u + 1;
         double radius[17], len[17], longest = 0;
         for (int k = 0; k < lines; k++) {
-            radius[k] = row_radius(p, dir, k, &len[k]);
+            double sag;
+            radius[k] = row_radius(p, dir, k, &len[k], &sag);
             longest = fmax(longest, len[k]);
+            *flatness = fmax(*flatness, sag);
         }
         for (int k = 0; k < lines; k++)
             if (len[k] >= ROW_SHORT * longest)
@@ -154,7 +160,7 @@ void sc_accuracy_choose(const sc_scene *scene, const sc_patch_list *patches,
     for (int s = 0; s < scene->nsurfaces; s++) {
         const sc_patch_list *list = &patches[s];
         double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-        double radius = HUGE_VAL;
+        double radius = HUGE_VAL, flatness = 0;
         for (int p = 0; p < list->count; p++) {
             const sc_bezier_patch *bp = &list->patches[p];
             int n = (bp->deg_u + 1) * (bp->deg_v + 1);
@@ -164,7 +170,7 @@ void sc_accuracy_choose(const sc_scene *scene, const sc_patch_list *patches,
                     lo[c] = fmin(lo[c], x);
                     hi[c] = fmax(hi[c], x);
                 }
-            radius = fmin(radius, patch_radius(bp));
+            radius = fmin(radius, patch_radius(bp, &flatness));
         }
         /* Nearest distance to the eye; an eye inside the box sees the
          * surface from as near as a thousandth of the scene. */
@@ -176,9 +182,15 @@ void sc_accuracy_choose(const sc_scene *scene, const sc_patch_list *patches,
             tol = fmin(tol, target->normal_deg * M_PI / 180 * radius / fp);
         tol = fmax(tol, SC_ACCURACY_MIN_PX);
         double stop = SCG_STOP_FRACTION * tol * fp;
-        double h = MAX_HULL_FRACTION * diag;
+        /* The hulls: the defaults', finer only where a start that far off
+         * would need more than NEWTON_STEPS iterations, or lie outside
+         * Newton's basin. Coarser hulls save hulls but cost iterations per
+         * pixel, which on llvmpipe cost more than the hulls saved
+         * (docs/accuracy.md); finer ones cost hulls where a few more
+         * iterations on few pixels are cheaper. */
+        double h = HULL_CEILING * diag;
         if (!isinf(radius)) {
-            h = fmin(h, CONE_RAD * CONE_RAD * radius / 8);
+            h = fmin(h, RHO_MAX * radius);
             /* R ρ^(2^NEWTON_STEPS) ≤ stop. */
             h = fmin(h, radius * pow(stop / radius, 1.0 / (1 << NEWTON_STEPS)));
         }
@@ -189,7 +201,10 @@ void sc_accuracy_choose(const sc_scene *scene, const sc_patch_list *patches,
             c->tol_milli = 1;
         c->max_iters = 0;
         if (newton_like) {
-            int k = newton_iterations(radius, isinf(radius) ? 0 : h / radius, stop);
+            /* A start is no farther from the surface than its hull allows,
+             * nor than the patch's net is from flat. */
+            double start = fmin(h, flatness);
+            int k = newton_iterations(radius, isinf(radius) ? 0 : start / radius, stop);
             c->max_iters = k + 1 + ITER_MARGIN;  /* + the converged step */
             if (c->max_iters > SC_MAX_ITERS)
                 c->max_iters = SC_MAX_ITERS;
