@@ -11,11 +11,11 @@
  *   iteration stops on a step below SCG_STOP_FRACTION · tol · footprint,
  *   that step taken (one more); so k iterations suffice where
  *   R (h/R)^(2^k) ≤ 0.3 tol fp;
- * - the hulls are the coarsest from which Newton lands in NEWTON_STEPS
- *   iterations (R (h/R)^(2^k) ≤ stop), and no more than RHO_MAX · R off
- *   (outside the quadratic model); trimmed surfaces keep the defaults'
- *   hulls unless they need finer ones. The iteration cap is the bound's
- *   count from the hull's start, plus the converged step and a margin.
+ * - the hulls are the defaults', made finer only where their start would
+ *   need more than NEWTON_STEPS iterations or lie more than RHO_MAX · R
+ *   off (outside the quadratic model); the iteration cap is then the
+ *   bound's count from the hull's start, plus the converged step and a
+ *   margin.
  * The footprint is taken at the surface's nearest distance to the eye (its
  * control points' box), the smallest it has in the view; R comes from the
  * flatness of the control net (patch_radius). */
@@ -32,26 +32,20 @@
 /* The largest start error, as a fraction of the radius: the quadratic
  * model e' = e²/R shrinks the error only while e < R. */
 #define RHO_MAX 1.0
-/* Newton iterations a hull may need from its start. Untrimmed surfaces
- * take the coarsest hulls from which NEWTON_STEPS iterations land: on the
- * teapot at 1024² hulls that coarse cost 0.79-0.83 of the default hulls'
- * frame (fewer batches and readbacks for a few more iterations per pixel).
- * Trimmed surfaces keep the defaults' hulls (HULL_CEILING) and are cut
- * finer only where a start needs more than NEWTON_STEPS_TRIMMED: on
- * gpucast_part.igs the coarse hulls cost 1.07-1.21 of the defaults' (each
- * extra step on a pixel the trim curves then cut away is paid with the
- * trimming). With the converged step and the margin, NEWTON_STEPS_TRIMMED
- * gives the defaults' 6 iterations (SCG_DEFAULT_ITERS), so that a target
- * never runs more iterations than the defaults. docs/accuracy.md. */
-#define NEWTON_STEPS 2
-#define NEWTON_STEPS_TRIMMED 4
+/* Newton iterations a hull may need from its start: with the converged
+ * step and the margin, the defaults' 6 (SCG_DEFAULT_ITERS), so that a
+ * target never runs more iterations than the defaults. */
+#define NEWTON_STEPS 4
 /* Iterations beyond the bound's count: the start's error and the
  * convergence constant are estimates. */
 #define ITER_MARGIN 1
-/* The coarsest hulls of trimmed surfaces, as a fraction of the scene's
- * size: the defaults' (hulls.h); and of untrimmed ones. */
+/* The coarsest hulls a target chooses, as a fraction of the scene's size:
+ * the defaults' (hulls.h). Coarser hulls, down to those from which Newton
+ * lands in 2 iterations, cost 0.79-0.88 of the defaults' frame on the
+ * teapot but 1.03-1.16 on the teaspoon and up to 1.21 on gpucast_part.igs
+ * (docs/accuracy.md, "Coarser hulls"): fewer hulls, but larger ones, whose
+ * extra pixels and iterations cost more than the hulls saved. */
 #define HULL_CEILING SC_HULL_DEFAULT_TOLERANCE
-#define HULL_CEILING_UNTRIMMED 0.25
 
 const char *sc_accuracy_check(double px, double normal_deg)
 {
@@ -192,15 +186,13 @@ void sc_accuracy_choose(const sc_scene *scene, const sc_patch_list *patches,
             tol = fmin(tol, target->normal_deg * M_PI / 180 * radius / fp);
         tol = fmax(tol, SC_ACCURACY_MIN_PX);
         double stop = SCG_STOP_FRACTION * tol * fp;
-        /* The hulls: the coarsest whose start lands in `steps` iterations
-         * (R ρ^(2^steps) ≤ stop) inside Newton's basin, no coarser than
-         * the ceiling. */
-        int trimmed = scene->surfaces[s].nloops > 0;
-        int steps = trimmed ? NEWTON_STEPS_TRIMMED : NEWTON_STEPS;
-        double h = (trimmed ? HULL_CEILING : HULL_CEILING_UNTRIMMED) * diag;
+        /* The hulls: the defaults', finer only where a start that far off
+         * would need more than NEWTON_STEPS iterations (R ρ^(2^k) ≤ stop)
+         * or lie outside Newton's basin. */
+        double h = HULL_CEILING * diag;
         if (!isinf(radius)) {
             h = fmin(h, RHO_MAX * radius);
-            h = fmin(h, radius * pow(stop / radius, 1.0 / (1 << steps)));
+            h = fmin(h, radius * pow(stop / radius, 1.0 / (1 << NEWTON_STEPS)));
         }
         sc_accuracy_choice *c = &out[s];
         c->hull_tolerance = h / diag;
