@@ -91,8 +91,8 @@ TEST(accuracy_choice_is_monotone)
     check_monotone(&scene, patches, &view, 0, loose, tight);
     CHECK(tight[0] > loose[0] || tight[1] > loose[1]);
     check_monotone(&scene, patches, &view, 2, loose, tight);
-    /* A close-up from inside the scene's box: footprints a thousandth of
-     * the scene's size, the tightest target asks for the most. */
+    /* A close-up from 8 % of the default distance: the tightest target
+     * asks for the most there too. */
     sc_camera close = view;
     for (int c = 0; c < 3; c++)
         close.eye[c] = view.target[c] + 0.08 * (view.eye[c] - view.target[c]);

@@ -412,8 +412,9 @@ typedef struct sc_renderer_desc {
                                   stack (24), with bclip the number of
                                   clipping steps (32); both ignore start */
     /* An accuracy target (docs/accuracy.md). accuracy_px > 0: every
-     * surface gets the loosest adaptive hulls, the fewest iterations and
-     * the largest tolerance that keep its position error within
+     * surface gets the fewest iterations and the largest tolerance (and
+     * adaptive hulls no coarser than the defaults') that keep its position
+     * error within
      * accuracy_px pixel footprints (0.001 … 100) — and its normal error
      * within accuracy_normal_deg degrees (0 … 90; 0: no normal bound) —
      * in the view *accuracy_view (NULL: the scene's default view at 512²);

@@ -1,8 +1,9 @@
 /* accuracy.h — settings from an accuracy target ("model no more than a
- * scene needs"): for each surface, the loosest hull flatness, the fewest
- * Newton iterations and the largest convergence tolerance that still meet
- * a bound on the position error in pixel footprints (and optionally on the
- * normal error in degrees) for a view. The choice drives the knobs the
+ * scene needs"): for each surface, the fewest Newton iterations and the
+ * largest convergence tolerance that still meet a bound on the position
+ * error in pixel footprints (and optionally on the normal error in
+ * degrees) for a view, with the default hulls made finer only where the
+ * bound needs it. The choice drives the knobs the
  * renderer has anyway — the hulls' adaptive tolerance (hulls.h), the key's
  * itN and tolT (key.h) — per surface. docs/accuracy.md derives the bounds
  * and gives the measurements behind the constants. */
