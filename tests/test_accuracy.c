@@ -223,3 +223,34 @@ TEST(accuracy_bad_targets_refused)
     CHECK_CONTAINS(out, "--accuracy takes PX or PX,DEG");
     free(out);
 }
+
+/* `render --accuracy` keeps the lines scripts read and adds its summary
+ * before the program lines; its keys carry the chosen cap and tolerance. */
+TEST(accuracy_render_prints_choice)
+{
+    char cmd[1024], *out = NULL, *err = NULL;
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/acc_cli.png --size 48x48 --frames 1 "
+             "--accuracy 1", test_cli, test_tmpdir());
+    int rc = test_run(cmd, &out, &err);
+    if (rc != 0 && err && strstr(err, "no GL context")) {
+        free(out);
+        free(err);
+        SKIP("no GL context");
+    }
+    CHECK_INT(rc, 0);
+    CHECK(!strncmp(out, "stats programs=", 15));
+    char *chosen = strstr(out, "\nchosen accuracy_px=1 normal_deg=0 surfaces=");
+    CHECK(chosen != NULL);
+    char *program = strstr(out, "\nprogram ");
+    CHECK(program != NULL && program > chosen);
+    int iters_min = 0, iters_max = 0;
+    CHECK(sscanf(strstr(chosen, "iters_min="), "iters_min=%d iters_max=%d", &iters_min,
+                 &iters_max) == 2);
+    CHECK(iters_max < SCG_DEFAULT_ITERS);
+    char want[32];
+    snprintf(want, sizeof want, "-it%d-tol1-", iters_max);
+    CHECK_CONTAINS(program, want);
+    CHECK_CONTAINS(err, "render: surface 0: hull_tol=");
+    free(out);
+    free(err);
+}
