@@ -18,6 +18,12 @@ int sc_save_pack(sc_scene_id scene, const sc_renderer_desc *desc, const char *pa
                               "a pack is written from a scene, not from another pack");
     if (sc_api_render_desc(desc ? desc : &defaults, &internal, err) != SC_OK)
         return SC_FAIL;
+    /* The choices of an accuracy target depend on a view; a pack holds
+     * explicit settings only. */
+    if (desc && (desc->accuracy_px != 0 || desc->accuracy_normal_deg != 0))
+        return sc_api_invalid(err, "sc_renderer_desc.accuracy_px", PROBLEM_RANGE,
+                              "a pack holds explicit settings (hulls, iterations, tolerance), "
+                              "not an accuracy target");
     sc_pack pack;
     if (sc_pack_build(&s->scene, &internal, &pack, err) != SC_OK)
         return SC_FAIL;
@@ -35,7 +41,9 @@ static int check_packed_desc(const sc_renderer_desc *d, sc_error *err)
                       : d->tolerance_px != 0 ? "tolerance_px" : d->show ? "show"
                       : d->generic ? "generic" : d->unroll_max_degree ? "unroll_max_degree"
                       : d->trim ? "trim" : d->trim_iters ? "trim_iters"
-                      : d->termination ? "termination" : d->method ? "method" : NULL;
+                      : d->termination ? "termination" : d->method ? "method"
+                      : d->accuracy_px != 0 || d->accuracy_normal_deg != 0 ? "accuracy_px"
+                      : NULL;
     if (fixed)
         return sc_api_invalid(err, "sc_renderer_desc", PROBLEM_RANGE,
                               "%s is fixed by the pack (give it to `splinecast pack`)", fixed);

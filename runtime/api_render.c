@@ -133,6 +133,29 @@ int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error
 
 /* ---- renderers ---- */
 
+static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
+                       sc_error *err);
+
+/* The accuracy target of a desc (docs/accuracy.md), refused with the
+ * field's name when out of range. */
+static int accuracy_target(const sc_renderer_desc *d, const sc_scene *scene,
+                           sc_accuracy_target *t, sc_error *err)
+{
+    memset(t, 0, sizeof *t);
+    if (d->accuracy_px == 0 && d->accuracy_normal_deg == 0)
+        return SC_OK;
+    if (d->accuracy_px == 0)
+        return sc_api_invalid(err, "sc_renderer_desc.accuracy_normal_deg", PROBLEM_RANGE,
+                              "%g: a normal bound needs a position bound (accuracy_px)",
+                              d->accuracy_normal_deg);
+    const char *why = sc_accuracy_check(d->accuracy_px, d->accuracy_normal_deg);
+    if (why)
+        return sc_api_invalid(err, "sc_renderer_desc.accuracy_px", PROBLEM_RANGE,
+                              "%g, %g degrees: %s", d->accuracy_px, d->accuracy_normal_deg, why);
+    t->px = d->accuracy_px;
+    t->normal_deg = d->accuracy_normal_deg;
+    return make_camera(d->accuracy_view, scene, &t->view, err);
+}
 
 int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
                      sc_renderer_id *out, sc_error *err)
@@ -147,6 +170,7 @@ int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_des
     scene_object *s = c ? sc_api_pool_get(&sc_api_scenes, scene.id, err) : NULL;
     sc_render_desc internal;
     if (!s || sc_api_render_desc(desc ? desc : &defaults, &internal, err) != SC_OK ||
+        accuracy_target(desc ? desc : &defaults, &s->scene, &internal.accuracy, err) != SC_OK ||
         sc_api_make_current(c, err) != SC_OK)
         return SC_FAIL;
     /* The context's cache: sc_make_program on the renderer's keys returns
@@ -195,6 +219,30 @@ int sc_query_renderer_keys(sc_renderer_id renderer, sc_key *keys, int capacity, 
     int status = sc_api_count_keys((const char (*)[SCG_KEY_MAX])texts, n, keys, capacity, count, err);
     free(texts);
     return status;
+}
+
+int sc_query_renderer_surface(sc_renderer_id renderer, int surface,
+                              sc_renderer_surface_info *info, sc_error *err)
+{
+    renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    if (!r)
+        return SC_FAIL;
+    if (!info)
+        return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    if (sc_api_check_int(surface, 0, r->scene->scene.nsurfaces - 1, "surface", err))
+        return SC_FAIL;
+    memset(info, 0, sizeof *info);
+    const scg_key *key = sc_renderer_surface_key(r->renderer, surface);
+    scg_key_format(key, info->key.text, sizeof info->key.text);
+    info->max_iters = key->max_iters;
+    info->tolerance_px = scg_key_tolerance(key);
+    sc_renderer_surface_hulls(r->renderer, surface, &info->hulls, &info->hull_tolerance);
+    const sc_accuracy_choice *choice = sc_renderer_surface_choice(r->renderer, surface);
+    if (choice) {
+        info->footprint = choice->footprint;
+        info->radius = choice->radius;
+    }
+    return SC_OK;
 }
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err)

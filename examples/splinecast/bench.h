@@ -58,4 +58,11 @@ int bench_methods_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc des
                       const sc_camera_desc *cam, int frames, const sc_method *methods,
                       int count);
 
+/* The defaults against accuracy targets (bench_accuracy.c): `--accuracy
+ * PX[,DEG]`, given up to BENCH_MAX_TARGETS times. */
+#define BENCH_MAX_TARGETS 8
+int bench_accuracy_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                       const sc_camera_desc *cam, int frames, const double *px,
+                       const double *deg, int count);
+
 #endif

@@ -42,6 +42,13 @@ static const char usage[] =
     "                         method in turn: one line `bench variant=method\n"
     "                         method=M ...` each, then the frame time of each\n"
     "                         over the first's\n"
+    "  --accuracy PX[,DEG]    the defaults against the settings this accuracy\n"
+    "                         target chooses (docs/accuracy.md); may be given up\n"
+    "                         to 8 times. Each timed frame is drawn by every\n"
+    "                         configuration in turn: one line `bench\n"
+    "                         variant=accuracy accuracy_px=X normal_deg=A ...`\n"
+    "                         each (0: the defaults), then each target's frame\n"
+    "                         time over the defaults'\n"
     "  --frames N             timed frames (default 5)\n"
     "  --ert LIST             early ray termination: all or a comma list of none,\n"
     "                         conservative, manual, manual-both\n"
@@ -152,6 +159,8 @@ int cmd_bench(int argc, char **argv)
     bench_sweep sweep = {0};
     sc_method methods[BENCH_MAX_METHODS];
     int nmethods = 0;
+    double target_px[BENCH_MAX_TARGETS], target_deg[BENCH_MAX_TARGETS];
+    int ntargets = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
@@ -182,6 +191,13 @@ int cmd_bench(int argc, char **argv)
             if ((status = bench_methods_parse(argv[++i], methods, &nmethods)) != 0)
                 return status;
             desc.method = methods[0];
+        } else if (!strcmp(a, "--accuracy") && next) {
+            if (ntargets == BENCH_MAX_TARGETS)
+                return cli_usage_error("bench", "at most %d accuracy targets", BENCH_MAX_TARGETS);
+            if (cli_accuracy_parse(argv[++i], &target_px[ntargets], &target_deg[ntargets],
+                                   &err) != SC_OK)
+                return cli_usage_error("bench", "%s", err.message);
+            ntargets++;
         } else if (!strcmp(a, "--frames") && next) {
             long n = strtol(argv[++i], &end, 10);
             if (end == argv[i] || *end || n < 1 || n > 1000)
@@ -244,6 +260,9 @@ int cmd_bench(int argc, char **argv)
     status = 0;
     if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
         status = cli_usage_error("bench", "--camera: %s", err.message);
+    } else if (ntargets) {
+        status = bench_accuracy_run(ctx, scene, desc, &cam, frames, target_px, target_deg,
+                                    ntargets);
     } else if (nmethods > 1) {
         status = bench_methods_run(ctx, scene, desc, &cam, frames, methods, nmethods);
     } else {

@@ -46,6 +46,11 @@ static const char usage[] =
     "                         before it (manual early ray termination), and per\n"
     "                         hybrid bucket\n"
     "                         (default 32)\n"
+    "  --accuracy PX[,DEG]    choose each surface's hulls, iterations and\n"
+    "                         tolerance from a bound on the position error in\n"
+    "                         pixel footprints (0.001 to 100), and optionally on\n"
+    "                         the normal error in degrees, for this view; they\n"
+    "                         replace --hull, --iters and --tol (docs/accuracy.md)\n"
     "  --frames N             frames timed after a warm-up frame (default 5)\n"
     "  --ref                  also render the CPU reference and print its accuracy\n"
     "                         (progress on stderr)\n"
@@ -56,12 +61,53 @@ static const char usage[] =
     "        validating, compiling and linking the programs, plus the warm-up\n"
     "        frame's excess over the median, where llvmpipe finishes compiling)\n"
     "        and with --ref: accuracy coverage_pct=... fail_pct=... (see diff)\n"
+    "        with --accuracy: chosen accuracy_px=X normal_deg=A surfaces=N hulls=N\n"
+    "        iters_min=N iters_max=N tol_px_min=X tol_px_max=X hull_tol_min=X\n"
+    "        hull_tol_max=X (and one line per surface on stderr)\n"
     "        then program KEY for each program compiled, in order of first use\n";
 
 static void print_progress(double fraction, void *user)
 {
     double t0 = *(const double *)user;
     fprintf(stderr, "render: reference %3.0f%% (%.1f s)\n", 100.0 * fraction, sc_now() - t0);
+}
+
+/* What an accuracy target chose: a line per surface on stderr, a summary
+ * on stdout. */
+static int print_choice(sc_scene_id scene, sc_renderer_id renderer, const sc_renderer_desc *desc,
+                        sc_error *err)
+{
+    sc_scene_info info;
+    if (sc_query_scene_info(scene, &info, err) != SC_OK)
+        return SC_FAIL;
+    int hulls = 0, iters_min = 0, iters_max = 0;
+    double tol_min = 0, tol_max = 0, hull_min = 0, hull_max = 0;
+    for (int s = 0; s < info.surfaces; s++) {
+        sc_renderer_surface_info si;
+        if (sc_query_renderer_surface(renderer, s, &si, err) != SC_OK)
+            return SC_FAIL;
+        fprintf(stderr, "render: surface %d: hull_tol=%.4g hulls=%d iters=%d tol_px=%g "
+                "footprint=%.4g radius=%.4g\n", s, si.hull_tolerance, si.hulls, si.max_iters,
+                si.tolerance_px, si.footprint, si.radius);
+        hulls += si.hulls;
+        if (s == 0 || si.max_iters < iters_min)
+            iters_min = si.max_iters;
+        if (s == 0 || si.max_iters > iters_max)
+            iters_max = si.max_iters;
+        if (s == 0 || si.tolerance_px < tol_min)
+            tol_min = si.tolerance_px;
+        if (s == 0 || si.tolerance_px > tol_max)
+            tol_max = si.tolerance_px;
+        if (s == 0 || si.hull_tolerance < hull_min)
+            hull_min = si.hull_tolerance;
+        if (s == 0 || si.hull_tolerance > hull_max)
+            hull_max = si.hull_tolerance;
+    }
+    printf("chosen accuracy_px=%g normal_deg=%g surfaces=%d hulls=%d iters_min=%d iters_max=%d "
+           "tol_px_min=%g tol_px_max=%g hull_tol_min=%.4g hull_tol_max=%.4g\n",
+           desc->accuracy_px, desc->accuracy_normal_deg, info.surfaces, hulls, iters_min,
+           iters_max, tol_min, tol_max, hull_min, hull_max);
+    return SC_OK;
 }
 
 int cmd_render(int argc, char **argv)
@@ -140,6 +186,10 @@ int cmd_render(int argc, char **argv)
             if (end == argv[i] || *end || n < 1 || n > 1000)
                 return cli_usage_error("render", "--frames takes 1 to 1000, not '%s'", argv[i]);
             frames = (int)n;
+        } else if (!strcmp(a, "--accuracy") && next) {
+            if (cli_accuracy_parse(argv[++i], &desc.accuracy_px, &desc.accuracy_normal_deg,
+                                   &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--ref")) {
             with_ref = 1;
         } else if (a[0] != '-' && !scene_path) {
@@ -177,6 +227,7 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
     fprintf(stderr, "render: %s\n", ctx_info.description);
+    desc.accuracy_view = &view;
     if (sc_make_renderer(ctx, scene, &desc, &renderer, &err) != SC_OK) {
         cli_report(&err);
         goto done;
@@ -231,6 +282,10 @@ int cmd_render(int argc, char **argv)
             goto done;
         }
         printf("%s\n", acc.line);
+    }
+    if (desc.accuracy_px > 0 && print_choice(scene, renderer, &desc, &err) != SC_OK) {
+        cli_report(&err);
+        goto done;
     }
     /* The programs last, so that the lines above keep their places. The
      * context is fresh, so every key the renderer draws with was compiled

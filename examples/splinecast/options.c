@@ -191,3 +191,27 @@ const char *cli_start_name(sc_start start)
 {
     return name_of(starts, COUNT(starts), start, "default");
 }
+
+int cli_accuracy_parse(const char *text, double *px, double *deg, sc_error *err)
+{
+    char *end;
+    double p = strtod(text, &end), d = 0;
+    if (end == text || (*end && *end != ','))
+        return fail(err, "--accuracy takes PX or PX,DEG (e.g. 0.1 or 0.1,1), not '%s'", text);
+    if (*end == ',') {
+        const char *second = end + 1;
+        d = strtod(second, &end);
+        if (end == second || *end)
+            return fail(err, "--accuracy takes PX or PX,DEG (e.g. 0.1 or 0.1,1), not '%s'",
+                        text);
+    }
+    if (!(p >= 0.001 && p <= 100))
+        return fail(err, "--accuracy: the position bound takes 0.001 to 100 pixel footprints, "
+                         "not '%s'", text);
+    if (!(d >= 0 && d <= 90))
+        return fail(err, "--accuracy: the normal bound takes 0 (none) to 90 degrees, not '%s'",
+                    text);
+    *px = p;
+    *deg = d;
+    return SC_OK;
+}

@@ -39,5 +39,9 @@ const char *cli_backend_name(sc_backend backend);
  * of the scene's size); the other mode's number is set to 0 (default). */
 int cli_hulls_parse(const char *text, sc_hull_split *split, int *divisions, double *tolerance,
                     sc_error *err);
+/* "PX" or "PX,DEG": an accuracy target, position bound in pixel
+ * footprints and optionally a normal bound in degrees
+ * (docs/accuracy.md); the library checks the ranges. */
+int cli_accuracy_parse(const char *text, double *px, double *deg, sc_error *err);
 
 #endif

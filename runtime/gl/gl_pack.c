@@ -52,7 +52,7 @@ int sc_pack_build(const sc_scene *scene, const sc_render_desc *desc, sc_pack *ou
             free_unsent(r);
             return SC_FAIL;
         }
-        sc_prepare_surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
+        sc_prepare_surface_key(&scene->surfaces[s], &r->desc, NULL, &r->keys[s]);
         r->kinds[s] = r->keys[s].kind;
         sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
     }

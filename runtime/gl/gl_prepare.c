@@ -14,14 +14,16 @@
 #include "tri_prisms.h"
 
 /* The key of one surface (scene_keys.h): its degrees, rationality and
- * trims, the render's start, iterations and outputs; the generic program
- * above the unrolling limit, or everywhere when asked. */
-void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key)
+ * trims, the render's start, iterations and outputs (iterations and
+ * tolerance from the accuracy target's choice when there is one); the
+ * generic program above the unrolling limit, or everywhere when asked. */
+void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc,
+                            const sc_accuracy_choice *choice, scg_key *key)
 {
     sc_key_options opts = {
         .generic_above = desc->unroll_max_degree,
-        .max_iters = desc->max_iters,
-        .tol_milli = desc->tol_milli,
+        .max_iters = choice ? choice->max_iters : desc->max_iters,
+        .tol_milli = choice ? choice->tol_milli : desc->tol_milli,
         .start = desc->start,
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
@@ -36,6 +38,48 @@ void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc, scg
     }
 }
 
+
+/* Surfaces that share a program under the defaults share one under an
+ * accuracy target too: each takes the most iterations and the smallest
+ * tolerance chosen for any of them, so that a target never compiles more
+ * programs, nor switches between more, than the defaults (their hulls stay
+ * their own). */
+static void share_programs(sc_renderer *r)
+{
+    int n = r->scene->nsurfaces, ngroups = 0;
+    scg_key *base = sc_alloc((size_t)(n ? n : 1), sizeof *base);
+    int *group_of = sc_alloc((size_t)(n ? n : 1), sizeof *group_of);
+    sc_accuracy_choice *shared = sc_alloc((size_t)(n ? n : 1), sizeof *shared);
+    for (int s = 0; s < n; s++) {
+        if (sc_surface_drawable(r->scene, s, NULL) != SC_OK) {
+            group_of[s] = -1;
+            continue;
+        }
+        scg_key key;
+        sc_prepare_surface_key(&r->scene->surfaces[s], &r->desc, NULL, &key);
+        int g = 0;
+        while (g < ngroups && !scg_key_equal(&base[g], &key))
+            g++;
+        const sc_accuracy_choice *c = &r->choices[s];
+        if (g == ngroups) {
+            base[ngroups++] = key;
+            shared[g] = *c;
+        }
+        if (c->max_iters > shared[g].max_iters)
+            shared[g].max_iters = c->max_iters;
+        if (c->tol_milli < shared[g].tol_milli)
+            shared[g].tol_milli = c->tol_milli;
+        group_of[s] = g;
+    }
+    for (int s = 0; s < n; s++)
+        if (group_of[s] >= 0) {
+            r->choices[s].max_iters = shared[group_of[s]].max_iters;
+            r->choices[s].tol_milli = shared[group_of[s]].tol_milli;
+        }
+    free(base);
+    free(group_of);
+    free(shared);
+}
 
 /* The origin hulls are rasterised relative to: the middle of their box
  * when the renderer is made, kept thereafter, so that a surface update
@@ -270,11 +314,26 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     r->surface_program = sc_alloc((size_t)(n ? n : 1), sizeof *r->surface_program);
     r->own_programs = !r->desc.programs;
     r->programs = r->own_programs ? sc_program_cache_create(gl) : r->desc.programs;
+    /* Each surface is cut into Bézier patches once; hull i and the record
+     * it names come from the same patch, and an accuracy target measures
+     * them. */
+    r->patches = sc_alloc((size_t)(n ? n : 1), sizeof *r->patches);
+    if (scene->terrain)
+        sc_tri_patch_list(scene->terrain, &r->patches[0]);
+    else
+        for (int s = 0; s < n; s++)
+            sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
+    if (r->desc.accuracy.px > 0 && !scene->terrain) {
+        r->choices = sc_alloc((size_t)(n ? n : 1), sizeof *r->choices);
+        sc_accuracy_choose(scene, r->patches, &r->desc.accuracy, r->desc.method, r->choices);
+        share_programs(r);
+    }
     double t0 = sc_now();
     for (int s = 0; s < n; s++) {
         if (sc_surface_drawable(scene, s, err) != SC_OK)
             goto fail;
-        sc_prepare_surface_key(&scene->surfaces[s], &r->desc, &r->keys[s]);
+        sc_prepare_surface_key(&scene->surfaces[s], &r->desc, r->choices ? &r->choices[s] : NULL,
+                               &r->keys[s]);
         if (scene->terrain) {   /* its stand-in surface: the terrain's key */
             scg_key like = r->keys[s];
             sc_tri_key(scene->terrain, &like, &r->keys[s]);
@@ -284,17 +343,22 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
             goto fail;
     }
     r->compile_ms = 1e3 * (sc_now() - t0);
-    /* Each surface is cut into Bézier patches once; hull i and the record
-     * it names come from the same patch. */
-    r->patches = sc_alloc((size_t)(n ? n : 1), sizeof *r->patches);
     if (scene->terrain) {
         /* One record and one prism per triangular patch (tri_prisms.h). */
-        sc_tri_patch_list(scene->terrain, &r->patches[0]);
         sc_tri_prisms(scene->terrain, &r->hulls);
     } else {
-        for (int s = 0; s < n; s++)
-            sc_surface_world_patches(&scene->surfaces[s], s, &r->patches[s]);
-        if (sc_hulls_build_from(scene, r->patches, &r->desc.hulls, &r->hulls, err) != SC_OK)
+        sc_hull_desc hulls = r->desc.hulls;
+        double *tolerance = NULL;
+        if (r->choices) {
+            tolerance = sc_alloc((size_t)(n ? n : 1), sizeof *tolerance);
+            for (int s = 0; s < n; s++)
+                tolerance[s] = r->choices[s].hull_tolerance;
+            hulls.mode = SC_SPLIT_ADAPTIVE;
+            hulls.surface_tolerance = tolerance;
+        }
+        int status = sc_hulls_build_from(scene, r->patches, &hulls, &r->hulls, err);
+        free(tolerance);
+        if (status != SC_OK)
             goto fail;
     }
     if (sc_gpu_data_build_from(gl, scene, r->patches, r->keys, &r->data, err) != SC_OK)
@@ -359,6 +423,7 @@ void sc_renderer_destroy(sc_renderer *r)
     free(r->hull_group);
     free(r->keys);
     free(r->kinds);
+    free(r->choices);
     free(r->surface_program);
     free(r->frame_indices);
     free(r->distance);
@@ -382,7 +447,8 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     if (sc_surface_drawable(r->scene, surface, err) != SC_OK)
         return SC_FAIL;
     scg_key key;
-    sc_prepare_surface_key(&r->scene->surfaces[surface], &r->desc, &key);
+    sc_prepare_surface_key(&r->scene->surfaces[surface], &r->desc,
+                           r->choices ? &r->choices[surface] : NULL, &key);
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
     sc_patch_list old = r->patches[surface];
@@ -430,4 +496,20 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface)
 {
     return &r->keys[surface];
+}
+
+const sc_accuracy_choice *sc_renderer_surface_choice(const sc_renderer *r, int surface)
+{
+    return r->choices ? &r->choices[surface] : NULL;
+}
+
+void sc_renderer_surface_hulls(const sc_renderer *r, int surface, int *count,
+                               double *tolerance)
+{
+    *count = r->hulls.surfaces ? r->hulls.surfaces[surface].subpatch_count : 0;
+    *tolerance = 0;
+    if (r->choices)
+        *tolerance = r->choices[surface].hull_tolerance;
+    else if (!r->scene->terrain && r->hulls.desc.mode != SC_SPLIT_UNIFORM)
+        *tolerance = r->hulls.desc.tolerance;
 }

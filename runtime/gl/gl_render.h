@@ -7,6 +7,7 @@
 #ifndef SC_GL_RENDER_H
 #define SC_GL_RENDER_H
 
+#include "accuracy.h"
 #include "aov.h"
 #include "gl_loader.h"
 #include "hulls.h"
@@ -51,6 +52,10 @@ typedef struct sc_render_desc {
     sc_method method;       /* intersection method (default hybrid); with
                                subdiv, max_iters is the stack depth
                                (SCG_DEFAULT_SUBDIV_DEPTH) */
+    sc_accuracy_target accuracy; /* px > 0: each surface's hull tolerance,
+                               iterations and tolerance chosen from this
+                               target (accuracy.h) in place of hulls.tolerance,
+                               max_iters and tol_milli; px 0: off */
 } sc_render_desc;
 
 
@@ -119,5 +124,12 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats);
 const sc_scene *sc_renderer_scene(const sc_renderer *r);
 /* The key surface s is drawn with. */
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface);
+/* What the accuracy target chose for surface s; NULL without a target. */
+const sc_accuracy_choice *sc_renderer_surface_choice(const sc_renderer *r, int surface);
+/* The number of hulls surface s is drawn with and the adaptive tolerance
+ * they were built with (a fraction of the scene's size; 0 for uniform
+ * hulls and terrains). */
+void sc_renderer_surface_hulls(const sc_renderer *r, int surface, int *count,
+                               double *tolerance);
 
 #endif

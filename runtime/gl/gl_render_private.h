@@ -94,6 +94,8 @@ struct sc_renderer {
     sc_render_desc desc;
     scg_key *keys;           /* per surface */
     scg_patch_kind *kinds;   /* per surface */
+    sc_accuracy_choice *choices; /* per surface, from desc.accuracy; NULL
+                                without a target */
     sc_program *surface_program;
     sc_program_cache *programs;
     int own_programs;        /* the cache is the renderer's (not desc.programs) */
@@ -143,7 +145,9 @@ struct sc_renderer {
 /* ---- preparation steps gl_prepare.c and gl_pack.c share ---- */
 
 /* The key of surface s under the renderer's desc (generic where asked). */
-void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc, scg_key *key);
+/* choice: an accuracy target's choice for the surface, or NULL. */
+void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc,
+                            const sc_accuracy_choice *choice, scg_key *key);
 /* The origin hulls are rasterised relative to: the middle of their box. */
 void sc_prepare_raster_origin(sc_renderer *r);
 /* The GPU vertices of hulls [first, first + count) (r->hulls, r->data's

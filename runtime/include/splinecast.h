@@ -466,6 +466,18 @@ typedef struct sc_renderer_desc {
      * written: the fields above that decide them must be zero; order,
      * batch_hulls, gpu_memory_budget and own_programs apply. */
     const char *pack;
+    /* An accuracy target (docs/accuracy.md). accuracy_px > 0: every
+     * surface gets the fewest iterations and the largest tolerance (and
+     * adaptive hulls no coarser than the defaults') that keep its position
+     * error within
+     * accuracy_px pixel footprints (0.001 … 100) — and its normal error
+     * within accuracy_normal_deg degrees (0 … 90; 0: no normal bound) —
+     * in the view *accuracy_view (NULL: the scene's default view at 512²);
+     * they replace hull_split, hull_tolerance, max_iters and tolerance_px.
+     * 0: off. sc_query_renderer_surface says what was chosen. */
+    double accuracy_px;
+    double accuracy_normal_deg;
+    const struct sc_camera_desc *accuracy_view;
 } sc_renderer_desc;
 
 /* Writes what a renderer made with desc would upload for the scene —
@@ -511,6 +523,25 @@ typedef struct sc_renderer_info {
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
+
+/* How one surface is drawn: its key, its hulls and the settings behind
+ * them, chosen by an accuracy target or given in the desc. */
+typedef struct sc_renderer_surface_info {
+    sc_key key;
+    int hulls;                 /* sub-patches (proxy hulls) */
+    double hull_tolerance;     /* adaptive flatness, a fraction of the
+                                  scene's size (0 for uniform hulls) */
+    int max_iters;             /* the key's iterations */
+    double tolerance_px;       /* the key's tolerance */
+    /* With an accuracy target only (0 otherwise): */
+    double footprint;          /* world size of a pixel at the surface's
+                                  nearest distance to the eye */
+    double radius;             /* smallest radius of curvature found
+                                  (HUGE_VAL: flat) */
+} sc_renderer_surface_info;
+
+int sc_query_renderer_surface(sc_renderer_id renderer, int surface,
+                              sc_renderer_surface_info *info, sc_error *err);
 
 /* A pinhole view. Zero means default: eye and target both zero frame the
  * scene (the control points of untrimmed surfaces, the kept region of

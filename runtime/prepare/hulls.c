@@ -381,6 +381,7 @@ static int build_surface(builder *b, const sc_scene *scene, int si, const sc_pat
     sc_hulls *h = b->out;
     b->surface = &scene->surfaces[si];
     b->surface_index = si;
+    b->tolerance = h->surface_tolerance ? h->surface_tolerance[si] : h->tolerance;
     range->first_subpatch = h->count;
     range->first_vertex = h->nvertices;
     range->first_index = h->nindices;
@@ -424,6 +425,13 @@ int sc_hulls_build_from(const sc_scene *scene, const sc_patch_list *patches,
     double lo[3], hi[3];
     double diag = sc_scene_bounds(scene, lo, hi) ? dist3(lo, hi) : 0;
     hulls->tolerance = hulls->desc.tolerance * diag;
+    if (desc->surface_tolerance) {
+        hulls->surface_tolerance = sc_alloc((size_t)(scene->nsurfaces ? scene->nsurfaces : 1),
+                                            sizeof(double));
+        for (int si = 0; si < scene->nsurfaces; si++)
+            hulls->surface_tolerance[si] = desc->surface_tolerance[si] * diag;
+        hulls->desc.surface_tolerance = NULL; /* the caller's array need not outlive us */
+    }
     builder b;
     if (builder_open(&b, hulls, err) != SC_OK)
         return SC_FAIL;
@@ -474,7 +482,9 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
     if (surface < 0 || surface >= hulls->nsurfaces || scene->nsurfaces != hulls->nsurfaces)
         return sc_fail(err, NULL, 0, "surface %d is not in the scene the hulls were built for",
                        surface);
-    sc_hulls one = {.desc = hulls->desc, .tolerance = hulls->tolerance};
+    sc_hulls one = {.desc = hulls->desc,
+                    .tolerance = hulls->surface_tolerance ? hulls->surface_tolerance[surface]
+                                                          : hulls->tolerance};
     builder b;
     if (builder_open(&b, &one, err) != SC_OK)
         return SC_FAIL;
@@ -548,6 +558,7 @@ void sc_hulls_free(sc_hulls *hulls)
     free(hulls->vertices);
     free(hulls->indices);
     free(hulls->surfaces);
+    free(hulls->surface_tolerance);
     memset(hulls, 0, sizeof *hulls);
 }
 

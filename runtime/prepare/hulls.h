@@ -28,6 +28,10 @@ typedef struct sc_hull_desc {
                             (SC_HULL_DEFAULT_TOLERANCE) */
     int max_depth;       /* adaptive: most splits of one Bézier patch, along u
                             and v together (8) */
+    const double *surface_tolerance; /* adaptive: one tolerance per surface of
+                            the scene, as `tolerance`, in its place (an
+                            accuracy target chooses them, accuracy.h); NULL:
+                            `tolerance` for every surface. Copied */
 } sc_hull_desc;
 
 #define SC_HULL_DEFAULT_TOLERANCE 0.003
@@ -75,6 +79,8 @@ typedef struct sc_hulls {
     sc_hull_desc desc;   /* what they were built with, defaults filled in */
     double tolerance;    /* adaptive: the flatness bound in world units,
                             fixed when the hulls were built */
+    double *surface_tolerance; /* the same per surface, when the desc gave
+                            them; NULL otherwise */
 } sc_hulls;
 
 /* Builds the hulls of every surface of the scene. Collapsed sub-patches (all
