@@ -110,8 +110,11 @@ typedef enum scg_input_slot {
      * eye, so the ray is origin + t·dir with t = 1 on the hull. */
     SCG_IN_RAY_DIR,
     /* vec2, smooth: initial (u, v) for `cp` starts (parameter values of the
-     * hull's vertices, interpolated), in the program's parameters (local
-     * [0,1]² for `bez`, surface parameters for `nurbs`). */
+     * hull's vertices, interpolated) and `view` starts (the vertex stage's
+     * solve at each hull vertex, SCG_OUT_START, interpolated), in the
+     * program's parameters (local [0,1]² for `bez`, surface parameters for
+     * `nurbs`). In the vertex stage's program of a `view` key: the
+     * vertex's own parameter values. */
     SCG_IN_UV0,
     /* vec4, flat: the hull's sub-patch domain (u0, u1, v0, v1), in the same
      * parameters. `mid` starts begin at its centre. The iteration stops
@@ -163,6 +166,9 @@ typedef enum scg_output_slot {
                           flipped); -normalize(dir) where Su × Sv vanishes */
     SCG_OUT_ITERS,     /* int: iterations taken */
     SCG_OUT_SURFACE,   /* int: surface id (record texel +0 .w) */
+    SCG_OUT_START,     /* vec2: the vertex stage's program of a `view` key
+                          only: the start (u, v) at a hull vertex, in the
+                          program's parameters (what SCG_IN_UV0 holds) */
     SCG_OUTPUT_COUNT
 } scg_output_slot;
 
@@ -174,7 +180,7 @@ typedef enum scg_output_slot {
  * record domain: a converged point outside the sub-patch is still a true
  * intersection, and the depth test keeps the nearest. */
 #define SCG_DOMAIN_OVERLAP 0.1f
-#define SCG_DOMAIN_EPS 1.0e-5f
+#define SCG_DOMAIN_EPS 2.5e-7f
 
 /* The declaration of each IR slot: the contract's entry (shader_contract.h)
  * for textures, inputs and uniforms — sc_t_limit, a global of the fragment

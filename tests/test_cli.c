@@ -131,15 +131,34 @@ TEST(cli_render_method_option)
     CHECK_CONTAINS(out, "stats programs=1 ");
     free(out);
     out = NULL;
-    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/m.png --size 16x16 --init view",
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/m.png --size 16x16 --init vue",
              test_cli, test_tmpdir());
-    CHECK_INT(test_run(cmd, NULL, &err), 1);
-    CHECK_CONTAINS(err, "view-dependent initial values (view) are not implemented yet");
+    CHECK_INT(test_run(cmd, NULL, &err), 2);
+    CHECK_CONTAINS(err, "unknown start 'vue' (mid, cpmap or view)");
     free(err);
     snprintf(cmd, sizeof cmd, "%s render teapot -o %s/m.png --size 32x32 --method hybrid --ref",
              test_cli, test_tmpdir());
     CHECK_INT(test_run(cmd, &out, NULL), 0);
     CHECK_CONTAINS(out, "fail_pct=0 ");
+    free(out);
+}
+
+/* The view-dependent start (seed 000 §4.4) with the default method: the
+ * teapot within the issue's 0.1 % of failing pixels (measured at 256×256:
+ * 0.02 %; docs/stability.md). */
+TEST(cli_render_view_start_teapot)
+{
+    char cmd[2048], *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/v.png --size 256x256 --init view --ref",
+             test_cli, test_tmpdir());
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    CHECK_CONTAINS(out, "program bez3x3-poly-dc-trim0-hybrid-view-it6-tol0.05-ert1-out.shade.aov");
+    const char *f = out ? strstr(out, "fail_pct=") : NULL;
+    CHECK(f != NULL);
+    double fail = f ? atof(f + strlen("fail_pct=")) : 100;
+    if (fail > 0.1)
+        fprintf(stderr, "  %s", out);
+    CHECK(fail <= 0.1);
     free(out);
 }
 

@@ -40,7 +40,7 @@ layout(location = 0) out vec4 sc_colour;
 // units of sc_ray_dir.
 float sc_t_limit = 0.0;
 
-// The intersection, printed from the optimised IR (1756 instructions):
+// The intersection, printed from the optimised IR (1760 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
@@ -83,7 +83,7 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v64 = record_39.xz;
     vec2 v67 = record_39.yw;
     vec2 v69 = v67 - v64;
-    vec2 v70 = v69 * 1.0e-05;
+    vec2 v70 = v69 * 2.5e-07;
     vec2 uv_lo_71 = v55 - v61;
     vec2 uv_lo_72 = v64 - v70;
     vec2 uv_lo_73 = max(uv_lo_71, uv_lo_72);
@@ -1444,33 +1444,35 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     float error_1720 = J_1709 * miss_1701;
     float error_1721 = error_1719 - error_1720;
     float error_1722 = error_1721 / det_1714;
-    vec3 error_1723 = v1695 * error_1718;
-    vec3 error_1724 = v1699 * error_1722;
-    vec3 error_1725 = error_1723 + error_1724;
-    float hit_1726 = length(error_1725);
-    bool hit_1727 = hit_1726 < tol_27;
-    bool hit_1729 = uv_lo_72.x <= uv_final_1523.x;
-    bool hit_1731 = uv_final_1523.x <= uv_hi_75.x;
-    bool hit_1733 = uv_lo_72.y <= uv_final_1523.y;
-    bool hit_1735 = uv_final_1523.y <= uv_hi_75.y;
-    bool hit_1736 = hit_1729 && hit_1731;
-    bool hit_1737 = hit_1733 && hit_1735;
-    bool hit_1738 = hit_1736 && hit_1737;
-    bool hit_1739 = hit_1727 && hit_1738;
-    bool hit_1740 = 0.0 < t_1707;
-    bool hit_1741 = hit_1739 && hit_1740;
-    bool hit_1742 = hit_1741 && in_front_87;
-    vec3 normal_1743 = cross(v1695, v1699);
-    float normal_1744 = length(normal_1743);
-    bool normal_1745 = 0.0 < normal_1744;
-    vec3 normal_1746 = normal_1743 / normal_1744;
-    vec3 normal_1747 = -axis_16;
-    vec3 normal_1748 = normal_1745 ? normal_1746 : normal_1747;
-    hit = hit_1742;
+    vec2 error_1723 = vec2(error_1718, error_1722);
+    vec3 error_1724 = v1695 * error_1718;
+    vec3 error_1725 = v1699 * error_1722;
+    vec3 error_1726 = error_1724 + error_1725;
+    float hit_1727 = length(error_1726);
+    bool hit_1728 = hit_1727 < tol_27;
+    vec2 crossing_1729 = uv_final_1523 - error_1723;
+    bool hit_1733 = uv_lo_72.x <= crossing_1729.x;
+    bool hit_1735 = crossing_1729.x <= uv_hi_75.x;
+    bool hit_1737 = uv_lo_72.y <= crossing_1729.y;
+    bool hit_1739 = crossing_1729.y <= uv_hi_75.y;
+    bool hit_1740 = hit_1733 && hit_1735;
+    bool hit_1741 = hit_1737 && hit_1739;
+    bool hit_1742 = hit_1740 && hit_1741;
+    bool hit_1743 = hit_1728 && hit_1742;
+    bool hit_1744 = 0.0 < t_1707;
+    bool hit_1745 = hit_1743 && hit_1744;
+    bool hit_1746 = hit_1745 && in_front_87;
+    vec3 normal_1747 = cross(v1695, v1699);
+    float normal_1748 = length(normal_1747);
+    bool normal_1749 = 0.0 < normal_1748;
+    vec3 normal_1750 = normal_1747 / normal_1748;
+    vec3 normal_1751 = -axis_16;
+    vec3 normal_1752 = normal_1749 ? normal_1750 : normal_1751;
+    hit = hit_1746;
     uv = uv_final_1523;
     t = t_1707;
     point = point_1691;
-    normal = normal_1748;
+    normal = normal_1752;
     iters = iters_85;
     surface = v43;
 }
