@@ -62,7 +62,9 @@ typedef enum scg_eval_form {
  * subdivision steps is SCG_SUBDIV_STEPS_PER_LEVEL times it; for bclip,
  * itN is the number of clipping steps, SCG_DEFAULT_BCLIP_STEPS where the
  * renderer chooses (docs/variant-key.md). */
-#define SCG_SUBDIV_STEPS_PER_LEVEL 8
+/* A leaf whose quad of corners the ray misses lets the search go on
+ * (subdiv.c): 8 lost teaspoon pixels to the budget. */
+#define SCG_SUBDIV_STEPS_PER_LEVEL 12
 #define SCG_DEFAULT_SUBDIV_DEPTH 24
 #define SCG_DEFAULT_BCLIP_STEPS 32
 

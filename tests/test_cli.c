@@ -162,6 +162,25 @@ TEST(cli_render_view_start_teapot)
     free(out);
 }
 
+/* Subdivision beside the teaspoon's silhouettes: a leaf is a hit only when
+ * the ray passes inside the quad of its corners (gen/subdiv.c); the box
+ * alone failed 0.22 % of the pixels at 256×256, the quad test 0.037 %. */
+TEST(cli_render_subdiv_teaspoon)
+{
+    REQUIRE_DATA("teaset/teaspoon.bpt");
+    char cmd[2048], *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s render %s -o %s/s.png --size 256x256 --method subdiv --ref",
+             test_cli, test_data("teaset/teaspoon.bpt"), test_tmpdir());
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    const char *f = out ? strstr(out, "fail_pct=") : NULL;
+    CHECK(f != NULL);
+    double fail = f ? atof(f + strlen("fail_pct=")) : 100;
+    if (fail > 0.1)
+        fprintf(stderr, "  %s", out);
+    CHECK(fail <= 0.1);
+    free(out);
+}
+
 /* render prints one `program KEY` line per program, after its other lines:
  * mixed_keys.obj draws with the keys `info` lists (in another order). */
 TEST(cli_render_program_lines)
