@@ -155,7 +155,8 @@ typedef enum scg_uniform_slot {
 /* ---- results of the intersection function ---- */
 typedef enum scg_output_slot {
     SCG_OUT_HIT = 0,   /* bool: the last (u, v) lies within the tolerance of
-                          the ray and inside the record's domain widened by
+                          the ray, and the crossing one more Newton step
+                          points to inside the record's domain widened by
                           SCG_DOMAIN_EPS (anywhere on the record, not only in
                           the sub-patch domain plus overlap), in front of the
                           eye (and in front of T_LIMIT for ert2) */
@@ -180,6 +181,9 @@ typedef enum scg_output_slot {
  * record domain: a converged point outside the sub-patch is still a true
  * intersection, and the depth test keeps the nearest. */
 #define SCG_DOMAIN_OVERLAP 0.1f
+/* Float precision, about two ulps of 1: the hit's crossing is judged
+ * against it (intersect.c), and a wider margin accepted rays passing a
+ * free edge. */
 #define SCG_DOMAIN_EPS 2.5e-7f
 
 /* The declaration of each IR slot: the contract's entry (shader_contract.h)
