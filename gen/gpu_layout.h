@@ -176,10 +176,12 @@ typedef enum scg_output_slot {
 /* Parameter overlap allowed around a sub-patch domain while iterating, as a
  * fraction of its width and height (Martin et al.: leaves overlap slightly
  * so that no crack opens between neighbouring sub-patches); the iteration
- * box is in addition cut to the record's own domain, widened by
- * SCG_DOMAIN_EPS of its size. A hit is accepted anywhere in that widened
- * record domain: a converged point outside the sub-patch is still a true
- * intersection, and the depth test keeps the nearest. */
+ * box is in addition cut to the record's own domain widened by
+ * SCG_DOMAIN_OVERLAP of its size (a crossing just inside the record's
+ * edge may be reached from outside). A hit's crossing is accepted anywhere
+ * in the record's domain widened by SCG_DOMAIN_EPS of its size: a
+ * converged point outside the sub-patch is still a true intersection, and
+ * the depth test keeps the nearest. */
 #define SCG_DOMAIN_OVERLAP 0.1f
 /* Float precision, about two ulps of 1: the hit's crossing is judged
  * against it (intersect.c), and a wider margin accepted rays passing a

@@ -23,6 +23,8 @@ typedef struct scg_isect {
     scg_value dom_lo, dom_hi;                /* the hull's sub-patch domain */
     scg_value lo, hi;                        /* iteration box */
     scg_value rec_lo, rec_hi;                /* the record's domain, widened a hair */
+    scg_value roam_lo, roam_hi;              /* where iterates may go: the record's
+                                                domain widened by the overlap */
     /* Set by the method: the final (u, v) (vec2), the iteration count
      * (int), and the `done` flag of the iteration driver (bool). */
     scg_value uv_var, iters_var, done_var;

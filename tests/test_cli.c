@@ -181,6 +181,23 @@ TEST(cli_render_subdiv_teaspoon)
     free(out);
 }
 
+/* A crossing just inside a record's edge (PRO20359-L1's knot u = 4, seen
+ * 0.04° wide) that Newton reaches from outside the record: the iterates
+ * may now leave the record by the overlap (gen/intersect.c); stopped at
+ * its edge, the hybrid left a hole here (0.025 % at 64×64). */
+TEST(cli_render_iges_knot_crossing)
+{
+    REQUIRE_DATA("iges/PRO20359-L1.igs");
+    char cmd[2048], *out = NULL;
+    snprintf(cmd, sizeof cmd,
+             "%s render %s -o %s/k.png --size 64x64 --ref "
+             "--camera -469.78,8.908,757.30,-704.72186,522.36469,483.0527,0.04",
+             test_cli, test_data("iges/PRO20359-L1.igs"), test_tmpdir());
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    CHECK_CONTAINS(out, " fail_pct=0 ");
+    free(out);
+}
+
 /* render prints one `program KEY` line per program, after its other lines:
  * mixed_keys.obj draws with the keys `info` lists (in another order). */
 TEST(cli_render_program_lines)

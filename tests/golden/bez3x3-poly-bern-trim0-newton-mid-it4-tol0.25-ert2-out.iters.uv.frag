@@ -74,9 +74,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v49 = v47 - v44;
     vec2 v50 = v49 * 0.1;
     vec2 uv_lo_51 = v44 - v50;
-    vec2 uv_lo_53 = max(uv_lo_51, vec2(-2.5e-07));
+    vec2 uv_lo_53 = max(uv_lo_51, vec2(-0.1));
     vec2 uv_hi_54 = v47 + v50;
-    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.0000002));
+    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.1));
     vec2 uv0_58 = v44 + v47;
     vec2 uv0_59 = uv0_58 * 0.5;
     bool occluded_62 = sc_t_limit < 1.0;

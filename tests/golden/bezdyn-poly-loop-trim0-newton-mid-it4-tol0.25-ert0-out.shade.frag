@@ -72,9 +72,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v58 = v56 - v53;
     vec2 v59 = v58 * 0.1;
     vec2 uv_lo_60 = v53 - v59;
-    vec2 uv_lo_62 = max(uv_lo_60, vec2(-2.5e-07));
+    vec2 uv_lo_62 = max(uv_lo_60, vec2(-0.1));
     vec2 uv_hi_63 = v56 + v59;
-    vec2 uv_hi_65 = min(uv_hi_63, vec2(1.0000002));
+    vec2 uv_hi_65 = min(uv_hi_63, vec2(1.1));
     vec2 uv0_67 = v53 + v56;
     vec2 uv0_68 = uv0_67 * 0.5;
     vec2 uv_70 = uv0_68;

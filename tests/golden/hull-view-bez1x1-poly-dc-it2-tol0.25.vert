@@ -85,9 +85,9 @@ void main()
         vec2 v45 = v43 - v40;
         vec2 v46 = v45 * 0.1;
         vec2 uv_lo_47 = v40 - v46;
-        vec2 uv_lo_49 = max(uv_lo_47, vec2(-2.5e-07));
+        vec2 uv_lo_49 = max(uv_lo_47, vec2(-0.1));
         vec2 uv_hi_50 = v43 + v46;
-        vec2 uv_hi_52 = min(uv_hi_50, vec2(1.0000002));
+        vec2 uv_hi_52 = min(uv_hi_50, vec2(1.1));
         vec4 P_54 = texelFetch(sc_points, cp_offset_36);
         int P_56 = cp_offset_36 + 1;
         vec4 P_57 = texelFetch(sc_points, P_56);
