@@ -69,6 +69,8 @@ typedef struct scg_generated {
     char key[SCG_KEY_MAX];
     char vertex_name[64];
     scg_program *program;            /* the optimised IR */
+    scg_program *vertex_program;     /* the vertex stage's IR (`view` keys:
+                                        the start's solve), else NULL */
     scg_text fragment, vertex;
     scg_glslang_result fragment_check, vertex_check;   /* zero unless counted */
 } scg_generated;
