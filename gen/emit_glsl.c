@@ -401,22 +401,29 @@ static int function_body(const scg_program *prog, const unsigned char *loads, sc
     return SC_OK;
 }
 
-int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error *err)
+/* The function `name`, its results as out parameters; `what` opens its
+ * comment. Without a name, a block of statements that assigns the results
+ * to locals declared before it. */
+static int emit_function(const scg_program *prog, const char *what, const char *name,
+                         scg_text *out, sc_error *err)
 {
     program_use use;
     scan_use(prog, &use);
-    scg_text_printf(out, "// The intersection, printed from the optimised IR (%d instructions):\n"
+    scg_text_printf(out, "// %s, printed from the optimised IR (%d instructions):\n"
                          "// one statement per computed value, named hint_N after IR value N.\n",
-                    scg_program_size(prog));
-    scg_text_append(out, "void sc_intersect(");
-    const char *sep = "";
-    for (int s = 0; s < SCG_OUTPUT_COUNT; s++)
-        if (use.outputs[s]) {
-            const scg_slot_info *info = scg_output_info((scg_output_slot)s);
-            scg_text_printf(out, "%sout %s %s", sep, info->glsl_type, info->name);
-            sep = ", ";
-        }
-    scg_text_append(out, ")\n{\n");
+                    what, scg_program_size(prog));
+    if (name) {
+        scg_text_printf(out, "void %s(", name);
+        const char *sep = "";
+        for (int s = 0; s < SCG_OUTPUT_COUNT; s++)
+            if (use.outputs[s]) {
+                const scg_slot_info *info = scg_output_info((scg_output_slot)s);
+                scg_text_printf(out, "%sout %s %s", sep, info->glsl_type, info->name);
+                sep = ", ";
+            }
+        scg_text_append(out, ")\n");
+    }
+    scg_text_append(out, "{\n");
     unsigned char *loads = load_in_place(prog);
     int status = function_body(prog, loads, out, err);
     free(loads);
@@ -424,6 +431,16 @@ int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error
         return SC_FAIL;
     scg_text_append(out, "}\n");
     return SC_OK;
+}
+
+int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error *err)
+{
+    return emit_function(prog, "The intersection", "sc_intersect", out, err);
+}
+
+int scg_emit_view_start_block(const scg_program *prog, scg_text *out, sc_error *err)
+{
+    return emit_function(prog, "The start at this hull vertex", NULL, out, err);
 }
 
 /* ---- for program assembly (assemble_glsl.c) ---- */

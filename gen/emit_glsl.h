@@ -29,6 +29,11 @@
 /* Only the intersection function (`void sc_intersect(out …)`), as it appears
  * in the fragment program. */
 int scg_emit_intersect_function(const scg_program *prog, scg_text *out, sc_error *err);
+/* The vertex stage's start of a `view` key (scg_build_view_start_program)
+ * as a block of main() that assigns `vec2 start_uv`, declared before it:
+ * inline, because the block reads the vertex stage's outputs, which a
+ * function would read before the driver can see them written. */
+int scg_emit_view_start_block(const scg_program *prog, scg_text *out, sc_error *err);
 
 /* Which of the IR's slots a program reads (inputs, uniforms, textures) and
  * which results it writes: only those are declared. */
@@ -64,6 +69,8 @@ typedef struct scg_generated {
     char key[SCG_KEY_MAX];
     char vertex_name[64];
     scg_program *program;            /* the optimised IR */
+    scg_program *vertex_program;     /* the vertex stage's IR (`view` keys:
+                                        the start's solve), else NULL */
     scg_text fragment, vertex;
     scg_glslang_result fragment_check, vertex_check;   /* zero unless counted */
 } scg_generated;

@@ -28,6 +28,11 @@ static int generate(const scg_key *key, bool count_spirv, scg_generated *gen, sc
         keyed(err, gen->key);
         goto fail;
     }
+    if (key->start == SC_START_VIEW &&
+        scg_build_view_start_program(key, &gen->vertex_program, err) != SC_OK) {
+        keyed(err, gen->key);
+        goto fail;
+    }
     if (scg_glslang_check_program(scg_text_str(&gen->vertex), scg_text_str(&gen->fragment),
                                   gen->key, count_spirv ? &gen->vertex_check : NULL,
                                   count_spirv ? &gen->fragment_check : NULL, err) != SC_OK)
@@ -52,6 +57,9 @@ void scg_generated_free(scg_generated *gen)
 {
     if (gen->program)
         scg_program_free(gen->program);
+    if (gen->vertex_program)
+        scg_program_free(gen->vertex_program);
+    gen->vertex_program = NULL;
     scg_text_free(&gen->fragment);
     scg_text_free(&gen->vertex);
     gen->program = NULL;

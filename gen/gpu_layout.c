@@ -54,6 +54,7 @@ static const scg_slot_info outputs[SCG_OUTPUT_COUNT] = {
     [SCG_OUT_NORMAL] = {"normal", "vec3", 0, 3, -1},
     [SCG_OUT_ITERS] = {"iters", "int", 0, 1, -1},
     [SCG_OUT_SURFACE] = {"surface", "int", 0, 1, -1},
+    [SCG_OUT_START] = {"start_uv", "vec2", 0, 2, -1},
 };
 
 const scg_slot_info *scg_output_info(scg_output_slot slot)

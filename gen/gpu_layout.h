@@ -110,8 +110,11 @@ typedef enum scg_input_slot {
      * eye, so the ray is origin + t·dir with t = 1 on the hull. */
     SCG_IN_RAY_DIR,
     /* vec2, smooth: initial (u, v) for `cp` starts (parameter values of the
-     * hull's vertices, interpolated), in the program's parameters (local
-     * [0,1]² for `bez`, surface parameters for `nurbs`). */
+     * hull's vertices, interpolated) and `view` starts (the vertex stage's
+     * solve at each hull vertex, SCG_OUT_START, interpolated), in the
+     * program's parameters (local [0,1]² for `bez`, surface parameters for
+     * `nurbs`). In the vertex stage's program of a `view` key: the
+     * vertex's own parameter values. */
     SCG_IN_UV0,
     /* vec4, flat: the hull's sub-patch domain (u0, u1, v0, v1), in the same
      * parameters. `mid` starts begin at its centre. The iteration stops
@@ -152,7 +155,8 @@ typedef enum scg_uniform_slot {
 /* ---- results of the intersection function ---- */
 typedef enum scg_output_slot {
     SCG_OUT_HIT = 0,   /* bool: the last (u, v) lies within the tolerance of
-                          the ray and inside the record's domain widened by
+                          the ray, and the crossing one more Newton step
+                          points to inside the record's domain widened by
                           SCG_DOMAIN_EPS (anywhere on the record, not only in
                           the sub-patch domain plus overlap), in front of the
                           eye (and in front of T_LIMIT for ert2) */
@@ -163,18 +167,26 @@ typedef enum scg_output_slot {
                           flipped); -normalize(dir) where Su × Sv vanishes */
     SCG_OUT_ITERS,     /* int: iterations taken */
     SCG_OUT_SURFACE,   /* int: surface id (record texel +0 .w) */
+    SCG_OUT_START,     /* vec2: the vertex stage's program of a `view` key
+                          only: the start (u, v) at a hull vertex, in the
+                          program's parameters (what SCG_IN_UV0 holds) */
     SCG_OUTPUT_COUNT
 } scg_output_slot;
 
 /* Parameter overlap allowed around a sub-patch domain while iterating, as a
  * fraction of its width and height (Martin et al.: leaves overlap slightly
  * so that no crack opens between neighbouring sub-patches); the iteration
- * box is in addition cut to the record's own domain, widened by
- * SCG_DOMAIN_EPS of its size. A hit is accepted anywhere in that widened
- * record domain: a converged point outside the sub-patch is still a true
- * intersection, and the depth test keeps the nearest. */
+ * box is in addition cut to the record's own domain widened by
+ * SCG_DOMAIN_OVERLAP of its size (a crossing just inside the record's
+ * edge may be reached from outside). A hit's crossing is accepted anywhere
+ * in the record's domain widened by SCG_DOMAIN_EPS of its size: a
+ * converged point outside the sub-patch is still a true intersection, and
+ * the depth test keeps the nearest. */
 #define SCG_DOMAIN_OVERLAP 0.1f
-#define SCG_DOMAIN_EPS 1.0e-5f
+/* Float precision, about two ulps of 1: the hit's crossing is judged
+ * against it (intersect.c), and a wider margin accepted rays passing a
+ * free edge. */
+#define SCG_DOMAIN_EPS 2.5e-7f
 
 /* The declaration of each IR slot: the contract's entry (shader_contract.h)
  * for textures, inputs and uniforms — sc_t_limit, a global of the fragment

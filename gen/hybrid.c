@@ -117,9 +117,9 @@ static void start_run(scg_isect *c, scg_value r, scg_value lo_var, scg_value hi_
     scg_value overlap = scg_const_f(b, SCG_DOMAIN_OVERLAP);
     scg_value margin = scg_mul(b, scg_sub(b, p_hi, p_lo), overlap);
     scg_value wide_lo = scg_sub(b, p_lo, margin);
-    scg_store(b, lo_var, scg_max(b, wide_lo, c->rec_lo));
+    scg_store(b, lo_var, scg_max(b, wide_lo, c->roam_lo));
     scg_value wide_hi = scg_add(b, p_hi, margin);
-    scg_store(b, hi_var, scg_min(b, wide_hi, c->rec_hi));
+    scg_store(b, hi_var, scg_min(b, wide_hi, c->roam_hi));
     scg_value corners = scg_add(b, p_lo, p_hi);
     scg_value middle = scg_mul(b, corners, scg_const_f(b, 0.5f));
     scg_store(b, c->uv_var, middle);
@@ -141,15 +141,17 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     /* The first run may roam the whole record: converging back into the
      * sub-patch after a step outside it still counts. */
     scg_name(b, "run_lo");
-    scg_value lo_var = scg_var(b, SCG_VEC2, 0, c->rec_lo);
+    scg_value lo_var = scg_var(b, SCG_VEC2, 0, c->roam_lo);
     scg_name(b, "run_hi");
-    scg_value hi_var = scg_var(b, SCG_VEC2, 0, c->rec_hi);
+    scg_value hi_var = scg_var(b, SCG_VEC2, 0, c->roam_hi);
     scg_name(b, "run_pass");
     scg_value pass_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
     scg_name(b, "restart");
     scg_value restart_var = scg_var(b, SCG_INT, 0, scg_const_i(b, 0));
     scg_name(b, NULL);
-    scg_value sub_lo = c->lo, sub_hi = c->hi;
+    /* A point is kept inside the sub-patch plus overlap and inside the
+     * record, which the iterates may leave (intersect.c). */
+    scg_value sub_lo = scg_max(b, c->lo, c->rec_lo), sub_hi = scg_min(b, c->hi, c->rec_hi);
     scg_name(b, "restarts");
     scg_value restarts_var = scg_var(b, SCG_INT, 0, restart_count(c));
     scg_name(b, NULL);

@@ -23,6 +23,8 @@ typedef struct scg_isect {
     scg_value dom_lo, dom_hi;                /* the hull's sub-patch domain */
     scg_value lo, hi;                        /* iteration box */
     scg_value rec_lo, rec_hi;                /* the record's domain, widened a hair */
+    scg_value roam_lo, roam_hi;              /* where iterates may go: the record's
+                                                domain widened by the overlap */
     /* Set by the method: the final (u, v) (vec2), the iteration count
      * (int), and the `done` flag of the iteration driver (bool). */
     scg_value uv_var, iters_var, done_var;
@@ -48,6 +50,14 @@ typedef void (*scg_method_fn)(scg_isect *c, scg_value uv0, scg_value behind);
 /* Writes the whole intersection program for a key checked by
  * scg_key_check, with `method` as its iteration. */
 void scg_build_intersection(scg_builder *b, const scg_key *key, scg_method_fn method);
+
+/* The vertex stage's program of a `view` key (seed 000 §4.4): the ray from
+ * the eye through the hull vertex (SCG_IN_RAY_DIR reaches the vertex at
+ * t = 1), `method` (Newton) from the vertex's control-point parameters
+ * (SCG_IN_UV0) within the sub-patch domain plus overlap, and the point it
+ * reaches, kept in that box, as SCG_OUT_START: the fragment stage's start
+ * once interpolated. */
+void scg_build_view_start(scg_builder *b, const scg_key *key, scg_method_fn method);
 
 /* Iterations stop when the object-space step |Su·Δu + Sv·Δv| is below
  * tol · SCG_STOP_FRACTION; the step is taken, so what is left is of second

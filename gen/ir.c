@@ -78,7 +78,7 @@ static const scg_type input_types[SCG_INPUT_COUNT] = {
 static const scg_type output_types[SCG_OUTPUT_COUNT] = {
     [SCG_OUT_HIT] = SCG_BOOL,    [SCG_OUT_UV] = SCG_VEC2,     [SCG_OUT_T] = SCG_FLOAT,
     [SCG_OUT_POINT] = SCG_VEC3,  [SCG_OUT_NORMAL] = SCG_VEC3, [SCG_OUT_ITERS] = SCG_INT,
-    [SCG_OUT_SURFACE] = SCG_INT,
+    [SCG_OUT_SURFACE] = SCG_INT, [SCG_OUT_START] = SCG_VEC2,
 };
 
 /* ---- programs ---- */

@@ -270,6 +270,17 @@ int scg_build_program(const scg_key *key, scg_program **out, sc_error *err);
 int scg_compile_stages(const scg_key *key, scg_stage_fn on_stage, void *user,
                        scg_program **out, sc_error *err);
 
+/* The vertex stage's program of a `view` key (intersect.h,
+ * scg_build_view_start), built, validated and optimised; it writes
+ * SCG_OUT_START only. Keys whose vertex stages are one program share one
+ * start key (scg_view_start_key). Fails for a key without the `view`
+ * start. */
+int scg_build_view_start_program(const scg_key *key, scg_program **out, sc_error *err);
+/* The fields of a `view` key that its vertex stage depends on (kind,
+ * degrees, rational, evaluation form, iterations, tolerance), the others
+ * at one value: Newton, untrimmed, no early ray termination, shaded. */
+scg_key scg_view_start_key(const scg_key *key);
+
 /* ---- interpreter ----
  * Runs a program on the CPU in single precision, as a GPU would: float
  * arithmetic rounded after every operation (no fused multiply-add), the

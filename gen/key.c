@@ -340,9 +340,7 @@ int scg_key_check(const scg_key *key, sc_error *err)
     if (!tri && key->start == SC_START_SECURE)
         return sc_fail_key(err, text, "key %s: the secure starts (secure) are for "
                            "triangular patches (tri) only", text);
-    if (key->start == SC_START_VIEW)
-        missing = "view-dependent initial values (view) are";
-    else if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
+    if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
     bool subdivides = key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_BCLIP;
     if (!missing && subdivides && (key->kind != SCG_PATCH_BEZIER || key->eval == SCG_EVAL_LOOP))

@@ -8,9 +8,9 @@
  *
  * Triangular patches have one total degree: tri4-poly-dc-trim0-newton-
  * secure-…. Full grammar and the meaning of every value:
- * docs/variant-key.md. Values that later work will implement
- * (view-dependent starts) parse, so that the form is stable, but
- * scg_key_check refuses them. */
+ * docs/variant-key.md. Values that later work will implement (the basis
+ * form for NURBS) parse, so that the form is stable, but scg_key_check
+ * refuses them. */
 #ifndef SCG_KEY_H
 #define SCG_KEY_H
 
@@ -62,14 +62,18 @@ typedef enum scg_eval_form {
  * subdivision steps is SCG_SUBDIV_STEPS_PER_LEVEL times it; for bclip,
  * itN is the number of clipping steps, SCG_DEFAULT_BCLIP_STEPS where the
  * renderer chooses (docs/variant-key.md). */
-#define SCG_SUBDIV_STEPS_PER_LEVEL 8
+/* A leaf whose quad of corners the ray misses lets the search go on
+ * (subdiv.c): 8 lost teaspoon pixels to the budget. */
+#define SCG_SUBDIV_STEPS_PER_LEVEL 12
 #define SCG_DEFAULT_SUBDIV_DEPTH 24
 #define SCG_DEFAULT_BCLIP_STEPS 32
 
 /* The start is the option's sc_start: SC_START_MID "mid" (centre of the
  * sub-patch domain), SC_START_CPMAP "cp" (interpolated hull-vertex
- * parameters), SC_START_VIEW "view" (view-dependent, reserved). A key never
- * holds SC_START_DEFAULT. */
+ * parameters), SC_START_VIEW "view" (a Newton solve per hull vertex in the
+ * vertex stage, from its control-point parameters, interpolated: seed 000
+ * §4.4; gen/intersect.c, scg_build_view_start). A key never holds
+ * SC_START_DEFAULT. */
 
 /* What the program does for early ray termination. This is not the
  * renderer's option sc_ray_termination, which also decides whether whole

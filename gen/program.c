@@ -61,3 +61,39 @@ int scg_build_program(const scg_key *key, scg_program **out, sc_error *err)
 {
     return scg_compile_stages(key, NULL, NULL, out, err);
 }
+
+scg_key scg_view_start_key(const scg_key *key)
+{
+    scg_key k = *key;
+    k.trim = SC_TRIM_NONE;
+    k.trim_degree = k.trim_iters = 0;
+    /* Seed 000 §4.4: the vertex rays are solved with Newton's method,
+     * whatever finishes the fragment's. */
+    k.method = SC_METHOD_NEWTON;
+    k.ert = SCG_ERT_NONE;
+    k.outputs = SCG_OUTPUT_SHADE;
+    return k;
+}
+
+int scg_build_view_start_program(const scg_key *key, scg_program **out, sc_error *err)
+{
+    *out = NULL;
+    if (scg_key_check(key, err) != SC_OK)
+        return SC_FAIL;
+    scg_key k = scg_view_start_key(key);
+    char text[SCG_KEY_MAX];
+    scg_key_format(key, text, sizeof text);
+    if (k.start != SC_START_VIEW)
+        return sc_fail_key(err, text, "key %s: only a 'view' start has a vertex-stage solve",
+                           text);
+    scg_program *prog = scg_program_create(&k);
+    scg_builder b;
+    scg_builder_init(&b, prog);
+    scg_build_view_start(&b, &k, scg_method_newton);
+    if (scg_validate(prog, err) != SC_OK || scg_optimize(prog, NULL, NULL, err) != SC_OK) {
+        scg_program_free(prog);
+        return SC_FAIL;
+    }
+    *out = prog;
+    return SC_OK;
+}

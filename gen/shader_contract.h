@@ -21,7 +21,7 @@
 #define SCG_ATTRIBS(X)                                                               \
     /* the vertex relative to its record's centre (transforms baked) */              \
     X(HULL_POSITION, 0, "sc_hull_position", "vec3", 3, FLOAT)                        \
-    /* its control-point parameters (`cp` keys only) */                              \
+    /* its control-point parameters (`cp` and `view` keys only) */                   \
     X(HULL_UV, 1, "sc_hull_uv", "vec2", 2, FLOAT)                                    \
     /* the sub-patch domain (u0, u1, v0, v1) */                                      \
     X(HULL_DOMAIN, 2, "sc_hull_domain", "vec4", 4, FLOAT)                            \

@@ -532,7 +532,8 @@ static void fill_audit(sc_shader_audit *audit, const scg_generated *gen, scg_sta
     scg_audit_line line;
     int fragment = stage == SCG_STAGE_FRAGMENT;
     /* Keys share vertex programs: a vertex line names its program. */
-    scg_audit_fill(&line, fragment ? gen->key : gen->vertex_name, stage, fragment ? gen->program : NULL,
+    scg_audit_fill(&line, fragment ? gen->key : gen->vertex_name, stage,
+                   fragment ? gen->program : gen->vertex_program,
                    fragment ? &gen->fragment_check : &gen->vertex_check,
                    scg_text_str(fragment ? &gen->fragment : &gen->vertex));
     audit->inst = line.value[SCG_AUDIT_INST];

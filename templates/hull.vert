@@ -23,6 +23,7 @@
 
 {{TEXTURE_RECORDS}}
 {{COLOUR_TEXTURE}}
+{{VIEW_START_DECLARATIONS}}
 
 // The fragment stage's inputs (gpu_layout.h): the ray as origin and
 // direction relative to the record's centre, where float precision does not
@@ -43,9 +44,9 @@ void main()
     sc_ray_origin = (sc_eye - sc_centre) + sc_eye_low;
     // Not normalised: interpolated, it reaches the fragment's hull point at t = 1.
     sc_ray_dir = sc_hull_position - sc_ray_origin;
-    {{UV_START}}
     sc_domain = sc_hull_domain;
     sc_record = sc_hull_record;
+    {{UV_START}}
     {{COLOUR}}
     gl_Position = sc_view_projection * vec4(sc_hull_raster_position - sc_raster_eye, 1.0);
 }

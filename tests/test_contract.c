@@ -141,7 +141,7 @@ static int check_stage(const char *glsl, int fragment, unsigned *frag_outs, int 
 
 TEST(contract_generated_glsl_declares_only_the_contract)
 {
-    /* Colour and none, start values and none, AOVs, every debug view,
+    /* Colour and none, start values (cp, view) and none, AOVs, every debug view,
      * both early terminations that read or declare something, NURBS
      * knots, the generic program. */
     static const char *const keys[] = {
@@ -153,6 +153,8 @@ TEST(contract_generated_glsl_declares_only_the_contract)
         "bez3x3-poly-bern-trim0-newton-mid-it4-tol0.25-ert3-out.aov.uv",
         "nurbs2x2-rat-dc-trim0-newton-mid-it4-tol0.25-ert2-out.shade",
         "bezdyn-poly-loop-trim0-newton-cp-it4-tol0.25-ert0-out.iters",
+        /* the vertex stage's solve of the view start */
+        "nurbs2x3-rat-dc-trim0-hybrid-view-it3-tol0.25-ert1-out.shade",
     };
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
         scg_key key;

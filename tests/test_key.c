@@ -170,7 +170,7 @@ TEST(key_method_combinations)
 TEST(key_reserved_refused)
 {
     static const struct { const char *text, *says; } cases[] = {
-        {"bez3x3-poly-dc-trim0-newton-view-it4-tol0.25-ert0-out.shade", "view-dependent"},
+        {"nurbs3x3-poly-bern-trim0-newton-mid-it4-tol0.25-ert0-out.shade", "basis form for NURBS"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         scg_key k;

@@ -42,9 +42,10 @@ typedef enum sc_start {
     SC_START_MID,          /* Newton starts at the middle of the sub-patch */
     SC_START_CPMAP,        /* at the control-point parameters interpolated
                               over the hull */
-    SC_START_VIEW,         /* view-dependent: keys parse it, but it is not
-                              implemented, so every call that builds a
-                              program refuses it by name */
+    SC_START_VIEW,         /* view-dependent: a Newton solve of the ray
+                              through each hull vertex in the vertex stage,
+                              from the vertex's control-point parameters,
+                              interpolated over the hull (seed 000 §4.4) */
     SC_START_SECURE        /* triangular patches (tri keys) only: the four
                               secure starts of seed 004 on the univariate
                               quartic along the projected ray (0, its

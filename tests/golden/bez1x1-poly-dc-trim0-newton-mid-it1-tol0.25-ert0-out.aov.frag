@@ -34,7 +34,7 @@ layout(location = 2) out vec4 sc_aov_uvt;
 layout(location = 3) out vec4 sc_aov_point;
 layout(location = 4) out vec4 sc_aov_normal;
 
-// The intersection, printed from the optimised IR (215 instructions):
+// The intersection, printed from the optimised IR (219 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
@@ -169,37 +169,39 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     float error_174 = J_163 * miss_155;
     float error_175 = error_173 - error_174;
     float error_176 = error_175 / det_168;
-    vec3 error_177 = Su_153 * error_172;
-    vec3 error_178 = Sv_148 * error_176;
-    vec3 error_179 = error_177 + error_178;
-    float hit_180 = length(error_179);
-    bool hit_181 = hit_180 < tol_27;
-    bool hit_183 = (-1.0e-05) <= v138.x;
-    bool hit_185 = v138.x <= 1.00001;
-    bool hit_186 = (-1.0e-05) <= v138.y;
-    bool hit_187 = v138.y <= 1.00001;
-    bool hit_188 = hit_183 && hit_185;
-    bool hit_189 = hit_186 && hit_187;
-    bool hit_190 = hit_188 && hit_189;
-    bool hit_191 = hit_181 && hit_190;
-    bool hit_192 = 0.0 < t_161;
-    bool hit_193 = hit_191 && hit_192;
-    vec3 normal_194 = cross(Su_153, Sv_148);
-    float normal_195 = length(normal_194);
-    bool normal_196 = 0.0 < normal_195;
-    vec3 normal_197 = normal_194 / normal_195;
-    vec3 normal_198 = -axis_16;
-    vec3 normal_199 = normal_196 ? normal_197 : normal_198;
-    vec2 uv_surface_202 = record_34.xz;
-    vec2 uv_surface_205 = record_34.yw;
-    vec2 uv_surface_206 = uv_surface_205 - uv_surface_202;
-    vec2 uv_surface_207 = v138 * uv_surface_206;
-    vec2 uv_surface_208 = uv_surface_202 + uv_surface_207;
-    hit = hit_193;
-    uv = uv_surface_208;
+    vec2 error_177 = vec2(error_172, error_176);
+    vec3 error_178 = Su_153 * error_172;
+    vec3 error_179 = Sv_148 * error_176;
+    vec3 error_180 = error_178 + error_179;
+    float hit_181 = length(error_180);
+    bool hit_182 = hit_181 < tol_27;
+    vec2 crossing_183 = v138 - error_177;
+    bool hit_187 = (-2.5e-07) <= crossing_183.x;
+    bool hit_189 = crossing_183.x <= 1.0000002;
+    bool hit_190 = (-2.5e-07) <= crossing_183.y;
+    bool hit_191 = crossing_183.y <= 1.0000002;
+    bool hit_192 = hit_187 && hit_189;
+    bool hit_193 = hit_190 && hit_191;
+    bool hit_194 = hit_192 && hit_193;
+    bool hit_195 = hit_182 && hit_194;
+    bool hit_196 = 0.0 < t_161;
+    bool hit_197 = hit_195 && hit_196;
+    vec3 normal_198 = cross(Su_153, Sv_148);
+    float normal_199 = length(normal_198);
+    bool normal_200 = 0.0 < normal_199;
+    vec3 normal_201 = normal_198 / normal_199;
+    vec3 normal_202 = -axis_16;
+    vec3 normal_203 = normal_200 ? normal_201 : normal_202;
+    vec2 uv_surface_206 = record_34.xz;
+    vec2 uv_surface_209 = record_34.yw;
+    vec2 uv_surface_210 = uv_surface_209 - uv_surface_206;
+    vec2 uv_surface_211 = v138 * uv_surface_210;
+    vec2 uv_surface_212 = uv_surface_206 + uv_surface_211;
+    hit = hit_197;
+    uv = uv_surface_212;
     t = t_161;
     point = point_150;
-    normal = normal_199;
+    normal = normal_203;
     iters = v139;
     surface = v38;
 }

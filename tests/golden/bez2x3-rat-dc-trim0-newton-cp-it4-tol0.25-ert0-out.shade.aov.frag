@@ -37,7 +37,7 @@ layout(location = 2) out vec4 sc_aov_uvt;
 layout(location = 3) out vec4 sc_aov_point;
 layout(location = 4) out vec4 sc_aov_normal;
 
-// The intersection, printed from the optimised IR (1040 instructions):
+// The intersection, printed from the optimised IR (1044 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
@@ -72,9 +72,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v49 = v47 - v44;
     vec2 v50 = v49 * 0.1;
     vec2 uv_lo_51 = v44 - v50;
-    vec2 uv_lo_53 = max(uv_lo_51, vec2(-1.0e-05));
+    vec2 uv_lo_53 = max(uv_lo_51, vec2(-0.1));
     vec2 uv_hi_54 = v47 + v50;
-    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.00001));
+    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.1));
     vec4 P_59 = texelFetch(sc_points, cp_offset_38);
     int P_61 = cp_offset_38 + 1;
     vec4 P_62 = texelFetch(sc_points, P_61);
@@ -848,37 +848,39 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     float error_998 = J_987 * miss_979;
     float error_999 = error_997 - error_998;
     float error_1000 = error_999 / det_992;
-    vec3 error_1001 = v973 * error_996;
-    vec3 error_1002 = v977 * error_1000;
-    vec3 error_1003 = error_1001 + error_1002;
-    float hit_1004 = length(error_1003);
-    bool hit_1005 = hit_1004 < tol_27;
-    bool hit_1007 = (-1.0e-05) <= uv_247.x;
-    bool hit_1009 = uv_247.x <= 1.00001;
-    bool hit_1010 = (-1.0e-05) <= uv_247.y;
-    bool hit_1011 = uv_247.y <= 1.00001;
-    bool hit_1012 = hit_1007 && hit_1009;
-    bool hit_1013 = hit_1010 && hit_1011;
-    bool hit_1014 = hit_1012 && hit_1013;
-    bool hit_1015 = hit_1005 && hit_1014;
-    bool hit_1016 = 0.0 < t_985;
-    bool hit_1017 = hit_1015 && hit_1016;
-    vec3 normal_1018 = cross(v973, v977);
-    float normal_1019 = length(normal_1018);
-    bool normal_1020 = 0.0 < normal_1019;
-    vec3 normal_1021 = normal_1018 / normal_1019;
-    vec3 normal_1022 = -axis_16;
-    vec3 normal_1023 = normal_1020 ? normal_1021 : normal_1022;
-    vec2 uv_surface_1026 = record_36.xz;
-    vec2 uv_surface_1029 = record_36.yw;
-    vec2 uv_surface_1030 = uv_surface_1029 - uv_surface_1026;
-    vec2 uv_surface_1031 = uv_247 * uv_surface_1030;
-    vec2 uv_surface_1032 = uv_surface_1026 + uv_surface_1031;
-    hit = hit_1017;
-    uv = uv_surface_1032;
+    vec2 error_1001 = vec2(error_996, error_1000);
+    vec3 error_1002 = v973 * error_996;
+    vec3 error_1003 = v977 * error_1000;
+    vec3 error_1004 = error_1002 + error_1003;
+    float hit_1005 = length(error_1004);
+    bool hit_1006 = hit_1005 < tol_27;
+    vec2 crossing_1007 = uv_247 - error_1001;
+    bool hit_1011 = (-2.5e-07) <= crossing_1007.x;
+    bool hit_1013 = crossing_1007.x <= 1.0000002;
+    bool hit_1014 = (-2.5e-07) <= crossing_1007.y;
+    bool hit_1015 = crossing_1007.y <= 1.0000002;
+    bool hit_1016 = hit_1011 && hit_1013;
+    bool hit_1017 = hit_1014 && hit_1015;
+    bool hit_1018 = hit_1016 && hit_1017;
+    bool hit_1019 = hit_1006 && hit_1018;
+    bool hit_1020 = 0.0 < t_985;
+    bool hit_1021 = hit_1019 && hit_1020;
+    vec3 normal_1022 = cross(v973, v977);
+    float normal_1023 = length(normal_1022);
+    bool normal_1024 = 0.0 < normal_1023;
+    vec3 normal_1025 = normal_1022 / normal_1023;
+    vec3 normal_1026 = -axis_16;
+    vec3 normal_1027 = normal_1024 ? normal_1025 : normal_1026;
+    vec2 uv_surface_1030 = record_36.xz;
+    vec2 uv_surface_1033 = record_36.yw;
+    vec2 uv_surface_1034 = uv_surface_1033 - uv_surface_1030;
+    vec2 uv_surface_1035 = uv_247 * uv_surface_1034;
+    vec2 uv_surface_1036 = uv_surface_1030 + uv_surface_1035;
+    hit = hit_1021;
+    uv = uv_surface_1036;
     t = t_985;
     point = point_969;
-    normal = normal_1023;
+    normal = normal_1027;
     iters = iters_248;
     surface = v40;
 }

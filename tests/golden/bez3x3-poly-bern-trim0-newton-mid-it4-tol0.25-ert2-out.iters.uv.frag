@@ -39,7 +39,7 @@ layout(location = 6) out vec4 sc_view_uv;
 // units of sc_ray_dir.
 float sc_t_limit = 0.0;
 
-// The intersection, printed from the optimised IR (1201 instructions):
+// The intersection, printed from the optimised IR (1205 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
@@ -74,9 +74,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v49 = v47 - v44;
     vec2 v50 = v49 * 0.1;
     vec2 uv_lo_51 = v44 - v50;
-    vec2 uv_lo_53 = max(uv_lo_51, vec2(-1.0e-05));
+    vec2 uv_lo_53 = max(uv_lo_51, vec2(-0.1));
     vec2 uv_hi_54 = v47 + v50;
-    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.00001));
+    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.1));
     vec2 uv0_58 = v44 + v47;
     vec2 uv0_59 = uv0_58 * 0.5;
     bool occluded_62 = sc_t_limit < 1.0;
@@ -1044,40 +1044,42 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     float error_1156 = J_1145 * miss_1137;
     float error_1157 = error_1155 - error_1156;
     float error_1158 = error_1157 / det_1150;
-    vec3 error_1159 = Su_1128 * error_1154;
-    vec3 error_1160 = Sv_1135 * error_1158;
-    vec3 error_1161 = error_1159 + error_1160;
-    float hit_1162 = length(error_1161);
-    bool hit_1163 = hit_1162 < tol_27;
-    bool hit_1165 = (-1.0e-05) <= uv_268.x;
-    bool hit_1167 = uv_268.x <= 1.00001;
-    bool hit_1168 = (-1.0e-05) <= uv_268.y;
-    bool hit_1169 = uv_268.y <= 1.00001;
-    bool hit_1170 = hit_1165 && hit_1167;
-    bool hit_1171 = hit_1168 && hit_1169;
-    bool hit_1172 = hit_1170 && hit_1171;
-    bool hit_1173 = hit_1163 && hit_1172;
-    bool hit_1174 = 0.0 < t_1143;
-    bool hit_1175 = hit_1173 && hit_1174;
-    bool hit_1176 = hit_1175 && in_front_271;
-    bool hit_1177 = t_1143 < sc_t_limit;
-    bool hit_1178 = hit_1176 && hit_1177;
-    vec3 normal_1179 = cross(Su_1128, Sv_1135);
-    float normal_1180 = length(normal_1179);
-    bool normal_1181 = 0.0 < normal_1180;
-    vec3 normal_1182 = normal_1179 / normal_1180;
-    vec3 normal_1183 = -axis_16;
-    vec3 normal_1184 = normal_1181 ? normal_1182 : normal_1183;
-    vec2 uv_surface_1187 = record_36.xz;
-    vec2 uv_surface_1190 = record_36.yw;
-    vec2 uv_surface_1191 = uv_surface_1190 - uv_surface_1187;
-    vec2 uv_surface_1192 = uv_268 * uv_surface_1191;
-    vec2 uv_surface_1193 = uv_surface_1187 + uv_surface_1192;
-    hit = hit_1178;
-    uv = uv_surface_1193;
+    vec2 error_1159 = vec2(error_1154, error_1158);
+    vec3 error_1160 = Su_1128 * error_1154;
+    vec3 error_1161 = Sv_1135 * error_1158;
+    vec3 error_1162 = error_1160 + error_1161;
+    float hit_1163 = length(error_1162);
+    bool hit_1164 = hit_1163 < tol_27;
+    vec2 crossing_1165 = uv_268 - error_1159;
+    bool hit_1169 = (-2.5e-07) <= crossing_1165.x;
+    bool hit_1171 = crossing_1165.x <= 1.0000002;
+    bool hit_1172 = (-2.5e-07) <= crossing_1165.y;
+    bool hit_1173 = crossing_1165.y <= 1.0000002;
+    bool hit_1174 = hit_1169 && hit_1171;
+    bool hit_1175 = hit_1172 && hit_1173;
+    bool hit_1176 = hit_1174 && hit_1175;
+    bool hit_1177 = hit_1164 && hit_1176;
+    bool hit_1178 = 0.0 < t_1143;
+    bool hit_1179 = hit_1177 && hit_1178;
+    bool hit_1180 = hit_1179 && in_front_271;
+    bool hit_1181 = t_1143 < sc_t_limit;
+    bool hit_1182 = hit_1180 && hit_1181;
+    vec3 normal_1183 = cross(Su_1128, Sv_1135);
+    float normal_1184 = length(normal_1183);
+    bool normal_1185 = 0.0 < normal_1184;
+    vec3 normal_1186 = normal_1183 / normal_1184;
+    vec3 normal_1187 = -axis_16;
+    vec3 normal_1188 = normal_1185 ? normal_1186 : normal_1187;
+    vec2 uv_surface_1191 = record_36.xz;
+    vec2 uv_surface_1194 = record_36.yw;
+    vec2 uv_surface_1195 = uv_surface_1194 - uv_surface_1191;
+    vec2 uv_surface_1196 = uv_268 * uv_surface_1195;
+    vec2 uv_surface_1197 = uv_surface_1191 + uv_surface_1196;
+    hit = hit_1182;
+    uv = uv_surface_1197;
     t = t_1143;
     point = point_1121;
-    normal = normal_1184;
+    normal = normal_1188;
     iters = iters_269;
     surface = v40;
 }

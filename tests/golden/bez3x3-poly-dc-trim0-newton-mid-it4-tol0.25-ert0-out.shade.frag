@@ -32,7 +32,7 @@ layout(binding = 2) uniform samplerBuffer sc_records;
 // Colour attachments, by location (docs/emitter.md).
 layout(location = 0) out vec4 sc_colour;
 
-// The intersection, printed from the optimised IR (1115 instructions):
+// The intersection, printed from the optimised IR (1119 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
@@ -67,9 +67,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v49 = v47 - v44;
     vec2 v50 = v49 * 0.1;
     vec2 uv_lo_51 = v44 - v50;
-    vec2 uv_lo_53 = max(uv_lo_51, vec2(-1.0e-05));
+    vec2 uv_lo_53 = max(uv_lo_51, vec2(-0.1));
     vec2 uv_hi_54 = v47 + v50;
-    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.00001));
+    vec2 uv_hi_56 = min(uv_hi_54, vec2(1.1));
     vec2 uv0_58 = v44 + v47;
     vec2 uv0_59 = uv0_58 * 0.5;
     vec4 P_61 = texelFetch(sc_points, cp_offset_38);
@@ -975,37 +975,39 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     float error_1073 = J_1062 * miss_1054;
     float error_1074 = error_1072 - error_1073;
     float error_1075 = error_1074 / det_1067;
-    vec3 error_1076 = Su_1052 * error_1071;
-    vec3 error_1077 = Sv_1032 * error_1075;
-    vec3 error_1078 = error_1076 + error_1077;
-    float hit_1079 = length(error_1078);
-    bool hit_1080 = hit_1079 < tol_27;
-    bool hit_1082 = (-1.0e-05) <= uv_265.x;
-    bool hit_1084 = uv_265.x <= 1.00001;
-    bool hit_1085 = (-1.0e-05) <= uv_265.y;
-    bool hit_1086 = uv_265.y <= 1.00001;
-    bool hit_1087 = hit_1082 && hit_1084;
-    bool hit_1088 = hit_1085 && hit_1086;
-    bool hit_1089 = hit_1087 && hit_1088;
-    bool hit_1090 = hit_1080 && hit_1089;
-    bool hit_1091 = 0.0 < t_1060;
-    bool hit_1092 = hit_1090 && hit_1091;
-    vec3 normal_1093 = cross(Su_1052, Sv_1032);
-    float normal_1094 = length(normal_1093);
-    bool normal_1095 = 0.0 < normal_1094;
-    vec3 normal_1096 = normal_1093 / normal_1094;
-    vec3 normal_1097 = -axis_16;
-    vec3 normal_1098 = normal_1095 ? normal_1096 : normal_1097;
-    vec2 uv_surface_1101 = record_36.xz;
-    vec2 uv_surface_1104 = record_36.yw;
-    vec2 uv_surface_1105 = uv_surface_1104 - uv_surface_1101;
-    vec2 uv_surface_1106 = uv_265 * uv_surface_1105;
-    vec2 uv_surface_1107 = uv_surface_1101 + uv_surface_1106;
-    hit = hit_1092;
-    uv = uv_surface_1107;
+    vec2 error_1076 = vec2(error_1071, error_1075);
+    vec3 error_1077 = Su_1052 * error_1071;
+    vec3 error_1078 = Sv_1032 * error_1075;
+    vec3 error_1079 = error_1077 + error_1078;
+    float hit_1080 = length(error_1079);
+    bool hit_1081 = hit_1080 < tol_27;
+    vec2 crossing_1082 = uv_265 - error_1076;
+    bool hit_1086 = (-2.5e-07) <= crossing_1082.x;
+    bool hit_1088 = crossing_1082.x <= 1.0000002;
+    bool hit_1089 = (-2.5e-07) <= crossing_1082.y;
+    bool hit_1090 = crossing_1082.y <= 1.0000002;
+    bool hit_1091 = hit_1086 && hit_1088;
+    bool hit_1092 = hit_1089 && hit_1090;
+    bool hit_1093 = hit_1091 && hit_1092;
+    bool hit_1094 = hit_1081 && hit_1093;
+    bool hit_1095 = 0.0 < t_1060;
+    bool hit_1096 = hit_1094 && hit_1095;
+    vec3 normal_1097 = cross(Su_1052, Sv_1032);
+    float normal_1098 = length(normal_1097);
+    bool normal_1099 = 0.0 < normal_1098;
+    vec3 normal_1100 = normal_1097 / normal_1098;
+    vec3 normal_1101 = -axis_16;
+    vec3 normal_1102 = normal_1099 ? normal_1100 : normal_1101;
+    vec2 uv_surface_1105 = record_36.xz;
+    vec2 uv_surface_1108 = record_36.yw;
+    vec2 uv_surface_1109 = uv_surface_1108 - uv_surface_1105;
+    vec2 uv_surface_1110 = uv_265 * uv_surface_1109;
+    vec2 uv_surface_1111 = uv_surface_1105 + uv_surface_1110;
+    hit = hit_1096;
+    uv = uv_surface_1111;
     t = t_1060;
     point = point_1034;
-    normal = normal_1098;
+    normal = normal_1102;
     iters = iters_266;
     surface = v40;
 }

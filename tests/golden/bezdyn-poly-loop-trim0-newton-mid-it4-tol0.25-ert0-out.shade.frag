@@ -32,7 +32,7 @@ layout(binding = 2) uniform samplerBuffer sc_records;
 // Colour attachments, by location (docs/emitter.md).
 layout(location = 0) out vec4 sc_colour;
 
-// The intersection, printed from the optimised IR (554 instructions):
+// The intersection, printed from the optimised IR (558 instructions):
 // one statement per computed value, named hint_N after IR value N.
 void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out vec3 normal, out int iters, out int surface)
 {
@@ -72,9 +72,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     vec2 v58 = v56 - v53;
     vec2 v59 = v58 * 0.1;
     vec2 uv_lo_60 = v53 - v59;
-    vec2 uv_lo_62 = max(uv_lo_60, vec2(-1.0e-05));
+    vec2 uv_lo_62 = max(uv_lo_60, vec2(-0.1));
     vec2 uv_hi_63 = v56 + v59;
-    vec2 uv_hi_65 = min(uv_hi_63, vec2(1.00001));
+    vec2 uv_hi_65 = min(uv_hi_63, vec2(1.1));
     vec2 uv0_67 = v53 + v56;
     vec2 uv0_68 = uv0_67 * 0.5;
     vec2 uv_70 = uv0_68;
@@ -479,37 +479,39 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
     float error_512 = J_501 * miss_493;
     float error_513 = error_511 - error_512;
     float error_514 = error_513 / det_506;
-    vec3 error_515 = v487 * error_510;
-    vec3 error_516 = v491 * error_514;
-    vec3 error_517 = error_515 + error_516;
-    float hit_518 = length(error_517);
-    bool hit_519 = hit_518 < tol_27;
-    bool hit_521 = (-1.0e-05) <= uv_final_320.x;
-    bool hit_523 = uv_final_320.x <= 1.00001;
-    bool hit_524 = (-1.0e-05) <= uv_final_320.y;
-    bool hit_525 = uv_final_320.y <= 1.00001;
-    bool hit_526 = hit_521 && hit_523;
-    bool hit_527 = hit_524 && hit_525;
-    bool hit_528 = hit_526 && hit_527;
-    bool hit_529 = hit_519 && hit_528;
-    bool hit_530 = 0.0 < t_499;
-    bool hit_531 = hit_529 && hit_530;
-    vec3 normal_532 = cross(v487, v491);
-    float normal_533 = length(normal_532);
-    bool normal_534 = 0.0 < normal_533;
-    vec3 normal_535 = normal_532 / normal_533;
-    vec3 normal_536 = -axis_16;
-    vec3 normal_537 = normal_534 ? normal_535 : normal_536;
-    vec2 uv_surface_540 = record_39.xz;
-    vec2 uv_surface_543 = record_39.yw;
-    vec2 uv_surface_544 = uv_surface_543 - uv_surface_540;
-    vec2 uv_surface_545 = uv_final_320 * uv_surface_544;
-    vec2 uv_surface_546 = uv_surface_540 + uv_surface_545;
-    hit = hit_531;
-    uv = uv_surface_546;
+    vec2 error_515 = vec2(error_510, error_514);
+    vec3 error_516 = v487 * error_510;
+    vec3 error_517 = v491 * error_514;
+    vec3 error_518 = error_516 + error_517;
+    float hit_519 = length(error_518);
+    bool hit_520 = hit_519 < tol_27;
+    vec2 crossing_521 = uv_final_320 - error_515;
+    bool hit_525 = (-2.5e-07) <= crossing_521.x;
+    bool hit_527 = crossing_521.x <= 1.0000002;
+    bool hit_528 = (-2.5e-07) <= crossing_521.y;
+    bool hit_529 = crossing_521.y <= 1.0000002;
+    bool hit_530 = hit_525 && hit_527;
+    bool hit_531 = hit_528 && hit_529;
+    bool hit_532 = hit_530 && hit_531;
+    bool hit_533 = hit_520 && hit_532;
+    bool hit_534 = 0.0 < t_499;
+    bool hit_535 = hit_533 && hit_534;
+    vec3 normal_536 = cross(v487, v491);
+    float normal_537 = length(normal_536);
+    bool normal_538 = 0.0 < normal_537;
+    vec3 normal_539 = normal_536 / normal_537;
+    vec3 normal_540 = -axis_16;
+    vec3 normal_541 = normal_538 ? normal_539 : normal_540;
+    vec2 uv_surface_544 = record_39.xz;
+    vec2 uv_surface_547 = record_39.yw;
+    vec2 uv_surface_548 = uv_surface_547 - uv_surface_544;
+    vec2 uv_surface_549 = uv_final_320 * uv_surface_548;
+    vec2 uv_surface_550 = uv_surface_544 + uv_surface_549;
+    hit = hit_535;
+    uv = uv_surface_550;
     t = t_499;
     point = point_483;
-    normal = normal_537;
+    normal = normal_541;
     iters = iters_71;
     surface = v43;
 }

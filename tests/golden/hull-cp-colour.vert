@@ -47,9 +47,9 @@ void main()
     sc_ray_origin = (sc_eye - sc_centre) + sc_eye_low;
     // Not normalised: interpolated, it reaches the fragment's hull point at t = 1.
     sc_ray_dir = sc_hull_position - sc_ray_origin;
-    sc_uv0 = sc_hull_uv;
     sc_domain = sc_hull_domain;
     sc_record = sc_hull_record;
+    sc_uv0 = sc_hull_uv;
     sc_base_colour = texelFetch(sc_colours, int(texelFetch(sc_records, 4 * sc_hull_record).w)).rgb;
     gl_Position = sc_view_projection * vec4(sc_hull_raster_position - sc_raster_eye, 1.0);
 }
