@@ -114,7 +114,7 @@ TEST(embed_gl_example_intersection_line)
      * square's along the same rays. */
     sc_scene scene;
     sc_error err = {0};
-    sc_camera cam;
+    sc_camera cam = {0};   /* up zero: the default up; the text has none */
     CHECK_INT(sc_read_scene(test_root("examples/scenes/teapot32.bpt"), &scene, &err), SC_OK);
     CHECK_INT(sc_camera_parse(camera_text, &cam, &err), SC_OK);
     cam.width = W;
