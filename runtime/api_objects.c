@@ -75,6 +75,7 @@ pool sc_api_contexts = {"context", 0, NULL};
 pool sc_api_programs = {"program", 0, NULL};
 pool sc_api_renderers = {"renderer", 0, NULL};
 pool sc_api_frames = {"frame", 0, NULL};
+pool sc_api_peers = {"peer", 0, NULL};
 
 uint32_t sc_api_slot_id(const pool *p, int index)
 {

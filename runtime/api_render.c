@@ -49,6 +49,7 @@ void sc_destroy_context(sc_context_id ctx)
     context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, NULL);
     if (!c)
         return;
+    sc_api_destroy_peers(c);
     for (int i = 0; i < sc_api_renderers.count; i++) {
         renderer_object *r = sc_api_renderers.slots[i].object;
         if (r && r->context == c) {
@@ -297,6 +298,12 @@ static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_cam
         return sc_api_invalid(err, "sc_camera_desc", PROBLEM_CAMERA,
                        "the eye must differ from the target and fovy_deg lie in (0, 180)");
     return SC_OK;
+}
+
+int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
+                       sc_error *err)
+{
+    return make_camera(desc, scene, cam, err);
 }
 
 int sc_check_camera(const sc_camera_desc *camera, sc_error *err)
@@ -576,6 +583,7 @@ void sc_shutdown(void)
 {
     destroy_all(&sc_api_frames, destroy_frame_id);
     destroy_all(&sc_api_renderers, destroy_renderer_id);
+    sc_api_destroy_peers(NULL);
     /* Contexts take their programs with them. */
     destroy_all(&sc_api_contexts, destroy_context_id);
     free(sc_api_programs.slots);
