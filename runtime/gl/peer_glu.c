@@ -81,6 +81,7 @@ typedef struct glu_loop {
 typedef struct glu_state {
     GLUnurbs *nurbs;
     glu_loop **loops;         /* per surface, oriented for GLU */
+    int *nloops;              /* per surface */
     /* the tessellation being collected */
     glu_vertex *vertices;
     long nvertices, cap_vertices;
@@ -217,7 +218,10 @@ static int polygon_contains(const double *pts, int n, double u, double v)
     return inside;
 }
 
-static void make_curve(const sc_curve *src, int reverse, glu_curve *out)
+/* A trim curve for GLU, its control points clamped into the surface's
+ * domain: a loop along the domain's edge that strays outside by rounding
+ * (1e-15 in IGES files) makes GLU drop the whole surface. */
+static void make_curve(const sc_curve *src, int reverse, const double domain[4], glu_curve *out)
 {
     int nk = src->ncp + src->degree + 1, rational = 0;
     for (int i = 0; i < src->ncp; i++)
@@ -232,23 +236,59 @@ static void make_curve(const sc_curve *src, int reverse, glu_curve *out)
     int dim = rational ? 3 : 2;
     for (int i = 0; i < src->ncp; i++) {
         const double *q = src->cp + 3 * (reverse ? src->ncp - 1 - i : i);
-        for (int c = 0; c < dim; c++)
-            out->cp[dim * i + c] = (float)(rational ? q[c] : q[c] / q[2]);
+        double uv[2] = {fmin(fmax(q[0] / q[2], domain[0]), domain[1]),
+                        fmin(fmax(q[1] / q[2], domain[2]), domain[3])};
+        for (int c = 0; c < 2; c++)
+            out->cp[dim * i + c] = (float)(rational ? uv[c] * q[2] : uv[c]);
+        if (rational)
+            out->cp[dim * i + 2] = (float)q[2];
+    }
+}
+
+/* The domain's boundary, counter-clockwise: a surface whose loops are
+ * all holes keeps what lies outside them (sc_trim_prepare's
+ * kept_without_crossings), which GLU wants said with an outer loop. */
+static void domain_loop(const sc_surface *s, glu_loop *out)
+{
+    double u0, u1, v0, v1;
+    sc_surface_domain(s, &u0, &u1, &v0, &v1);
+    const double corners[5][2] = {{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}, {u0, v0}};
+    static const float knots[7] = {0, 0, 1, 2, 3, 4, 4};
+    out->ncurves = 1;
+    out->curves = sc_alloc(1, sizeof(glu_curve));
+    glu_curve *c = out->curves;
+    c->nknots = 7;
+    c->order = 2;
+    c->knots = sc_alloc(7, sizeof(float));
+    memcpy(c->knots, knots, sizeof knots);
+    c->cp = sc_alloc(10, sizeof(float));
+    for (int i = 0; i < 5; i++) {
+        c->cp[2 * i] = (float)corners[i][0];
+        c->cp[2 * i + 1] = (float)corners[i][1];
     }
 }
 
 /* Loops oriented as GLU wants them: counter-clockwise at even nesting
  * depth (kept inside), clockwise at odd (holes), which is the parity rule
- * of the reference. */
-static glu_loop *orient_loops(const sc_surface *s)
+ * of the reference; with no outer loop, the domain's boundary first and
+ * every depth one deeper. *count gets the loops made. */
+static glu_loop *orient_loops(const sc_surface *s, int *count)
 {
-    glu_loop *loops = sc_alloc((size_t)s->nloops, sizeof *loops);
+    int has_outer = 0;
+    for (int l = 0; l < s->nloops; l++)
+        has_outer |= !s->loops[l].is_hole;
+    int first = !has_outer;
+    double domain[4];
+    sc_surface_domain(s, &domain[0], &domain[1], &domain[2], &domain[3]);
+    glu_loop *loops = sc_alloc((size_t)(s->nloops + first), sizeof *loops);
+    if (first)
+        domain_loop(s, &loops[0]);
     double **poly = sc_alloc((size_t)s->nloops, sizeof *poly);
     int *npoly = sc_alloc((size_t)s->nloops, sizeof *npoly);
     for (int l = 0; l < s->nloops; l++)
         poly[l] = sample_loop(&s->loops[l], &npoly[l]);
     for (int l = 0; l < s->nloops; l++) {
-        int depth = 0;
+        int depth = first;
         for (int o = 0; o < s->nloops; o++)
             if (o != l && npoly[o] > 2 && npoly[l] > 0 &&
                 polygon_contains(poly[o], npoly[o], poly[l][0], poly[l][1]))
@@ -256,16 +296,18 @@ static glu_loop *orient_loops(const sc_surface *s)
         int ccw = polygon_area(poly[l], npoly[l]) > 0;
         int reverse = ccw != (depth % 2 == 0);
         const sc_loop *src = &s->loops[l];
-        loops[l].ncurves = src->ncurves;
-        loops[l].curves = sc_alloc((size_t)src->ncurves, sizeof(glu_curve));
+        glu_loop *dst = &loops[first + l];
+        dst->ncurves = src->ncurves;
+        dst->curves = sc_alloc((size_t)src->ncurves, sizeof(glu_curve));
         for (int c = 0; c < src->ncurves; c++)
-            make_curve(&src->curves[reverse ? src->ncurves - 1 - c : c], reverse,
-                       &loops[l].curves[c]);
+            make_curve(&src->curves[reverse ? src->ncurves - 1 - c : c], reverse, domain,
+                       &dst->curves[c]);
     }
     for (int l = 0; l < s->nloops; l++)
         free(poly[l]);
     free(poly);
     free(npoly);
+    *count = s->nloops + first;
     return loops;
 }
 
@@ -315,9 +357,10 @@ int sc_peer_glu_create(sc_peer *p, sc_error *err)
     glu_state *g = sc_alloc(1, sizeof *g);
     p->kind = g;
     g->loops = sc_alloc((size_t)(p->scene->nsurfaces ? p->scene->nsurfaces : 1), sizeof *g->loops);
+    g->nloops = sc_alloc((size_t)(p->scene->nsurfaces ? p->scene->nsurfaces : 1), sizeof(int));
     for (int s = 0; s < p->scene->nsurfaces; s++)
         if (p->scene->surfaces[s].nloops)
-            g->loops[s] = orient_loops(&p->scene->surfaces[s]);
+            g->loops[s] = orient_loops(&p->scene->surfaces[s], &g->nloops[s]);
     g->nurbs = glu.NewNurbsRenderer();
     if (!g->nurbs)
         return sc_fail(err, NULL, 0, "gluNewNurbsRenderer failed");
@@ -359,8 +402,9 @@ void sc_peer_glu_destroy(sc_peer *p)
     if (g->nurbs)
         glu.DeleteNurbsRenderer(g->nurbs);
     for (int s = 0; s < p->scene->nsurfaces; s++)
-        free_loops(g->loops[s], p->scene->surfaces[s].nloops);
+        free_loops(g->loops[s], g->nloops[s]);
     free(g->loops);
+    free(g->nloops);
     free(g->vertices);
     free(g->indices);
     free(g);
@@ -414,7 +458,7 @@ static void *tessellate(void *arg)
         glu.NurbsSurface(g->nurbs, sf->nu + sf->deg_u + 1, job->knots_u[s], sf->nv + sf->deg_v + 1,
                          job->knots_v[s], dim, dim * sf->nu, job->cps[s], sf->deg_u + 1, sf->deg_v + 1,
                          sf->rational ? GL_MAP2_VERTEX_4 : GL_MAP2_VERTEX_3);
-        for (int l = 0; l < sf->nloops; l++) {
+        for (int l = 0; l < g->nloops[s]; l++) {
             const glu_loop *loop = &g->loops[s][l];
             glu.BeginTrim(g->nurbs);
             for (int c = 0; c < loop->ncurves; c++) {
