@@ -254,3 +254,12 @@ uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/lib/libsplinecast.a $(DESTDIR)$(PREFIX)/include/splinecast.h \
 	  $(DESTDIR)$(PREFIX)/include/splinecast_base.h $(DESTDIR)$(PREFIX)/include/splinecast_options.h \
 	  $(DESTDIR)$(PREFIX)/bin/splinecast $(DESTDIR)$(PREFIX)/lib/pkgconfig/splinecast.pc
+
+# GLU's tessellator alone (docs/chart.md): the check that the chart's
+# glu-TOL rows time GLU as a program of its own would. Links libGLU, which
+# the library itself only opens at run time.
+.PHONY: glu-tessellate
+glu-tessellate: $(BUILD)/glu_tessellate
+$(BUILD)/glu_tessellate: examples/glu_tessellate.c
+	@mkdir -p $(BUILD)
+	$(CC) $(OPT) -std=c11 -Wall -Wextra -D_DEFAULT_SOURCE -o $@ $< -lGLU -lm

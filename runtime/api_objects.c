@@ -180,3 +180,43 @@ int sc_api_count_keys(const char (*texts)[SCG_KEY_MAX], int n, sc_key *keys, int
     *count = n;
     return SC_OK;
 }
+
+/* The internal camera of a public one, defaults filled from the scene
+ * (api_private.h). */
+int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
+                       sc_error *err)
+{
+    static const sc_camera_desc defaults = {0};
+    if (!desc)
+        desc = &defaults;
+    sc_camera_default(scene, cam);
+    if (desc->text) {
+        if (sc_camera_parse(desc->text, cam, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        int given = 0;
+        for (int c = 0; c < 3; c++)
+            given |= desc->eye[c] != 0 || desc->target[c] != 0;
+        if (given) {
+            memcpy(cam->eye, desc->eye, sizeof cam->eye);
+            memcpy(cam->target, desc->target, sizeof cam->target);
+        }
+        if (desc->fovy_deg != 0)
+            cam->fovy_deg = desc->fovy_deg;
+    }
+    if (sc_api_check_int(desc->width, 0, 16384, "sc_camera_desc.width", err) ||
+        sc_api_check_int(desc->height, 0, 16384, "sc_camera_desc.height", err))
+        return SC_FAIL;
+    cam->width = desc->width ? desc->width : 512;
+    cam->height = desc->height ? desc->height : 512;
+    double dist2 = 0;
+    int finite = isfinite(cam->fovy_deg);
+    for (int c = 0; c < 3; c++) {
+        finite &= isfinite(cam->eye[c]) && isfinite(cam->target[c]);
+        dist2 += (cam->target[c] - cam->eye[c]) * (cam->target[c] - cam->eye[c]);
+    }
+    if (!finite || !(dist2 > 0) || !(cam->fovy_deg > 0 && cam->fovy_deg < 180))
+        return sc_api_invalid(err, "sc_camera_desc", PROBLEM_CAMERA,
+                       "the eye must differ from the target and fovy_deg lie in (0, 180)");
+    return SC_OK;
+}

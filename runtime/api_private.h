@@ -124,7 +124,7 @@ int sc_api_make_current(context_object *c, sc_error *err);
 /* A renderer stopped drawing the scene: frees it once its handle is gone too. */
 void sc_api_release_scene(scene_object *s);
 /* The internal camera of a public one (NULL: the default), defaults filled
- * from the scene (api_render.c). */
+ * from the scene (api_objects.c). */
 int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
                        sc_error *err);
 /* Destroys the peers made on context c (NULL: all of them) (api_peer.c). */

@@ -1,6 +1,7 @@
 /* peer_private.h — what the peers' files share: the peer's state
- * (peer_draw.c: targets, programs, frame set-up and read-back; peer_glu.c:
- * GLU's tessellation; peer_tess.c: the tessellation shaders' patches). */
+ * (peer.c: the entry points; peer_common.c: targets, programs, frame
+ * set-up and read-back; peer_glu.c: GLU's tessellation; peer_tess.c: the
+ * tessellation shaders' patches). */
 #ifndef SC_PEER_PRIVATE_H
 #define SC_PEER_PRIVATE_H
 
