@@ -29,7 +29,9 @@ typedef struct sc_peer_config {
 typedef struct sc_peer_stats {
     double tessellate_ms;    /* last update: GLU's tessellation, or the
                                 patches' extraction and bounds */
-    double upload_ms;        /* last update: sending the data, to completion */
+    double upload_ms;        /* last update: GLU: vertices of transformed
+                                surfaces to world space; sending the data,
+                                to completion */
     double draw_ms;          /* last draw, to completion */
     long vertices;           /* GLU: vertices of the last tessellation */
     long triangles;          /* GLU: uploaded; tessellation shaders: generated

@@ -91,7 +91,7 @@ typedef struct glu_state {
     GLenum prim_type;
     float normal[3];
     int surface;
-    double xform[12];
+    long *surface_first;      /* per surface and one more: its first vertex */
 } glu_state;
 
 static int glu_errors;
@@ -115,6 +115,8 @@ static void GLAPIENTRY on_normal(GLfloat *n, void *user)
     memcpy(g->normal, n, sizeof g->normal);
 }
 
+/* As little as a program of its own would do per vertex (the surface's
+ * transform is applied after the tessellation, where there is one). */
 static void GLAPIENTRY on_vertex(GLfloat *v, void *user)
 {
     glu_state *g = user;
@@ -123,15 +125,9 @@ static void GLAPIENTRY on_vertex(GLfloat *v, void *user)
         g->vertices = sc_realloc(g->vertices, (size_t)g->cap_vertices, sizeof *g->vertices);
     }
     /* GLU returns object-space points (divided by w for VERTEX_4). */
-    double p[3] = {v[0], v[1], v[2]}, n[3] = {g->normal[0], g->normal[1], g->normal[2]}, w[3],
-           wn[3];
-    sc_xform_point(g->xform, p, w);
-    sc_xform_normal(g->xform, n, wn);
     glu_vertex *out = &g->vertices[g->nvertices++];
-    for (int c = 0; c < 3; c++) {
-        out->pos[c] = (float)w[c];
-        out->normal[c] = (float)wn[c];
-    }
+    memcpy(out->pos, v, sizeof out->pos);
+    memcpy(out->normal, g->normal, sizeof out->normal);
     out->surface = g->surface;
 }
 
@@ -358,6 +354,7 @@ int sc_peer_glu_create(sc_peer *p, sc_error *err)
     p->kind = g;
     g->loops = sc_alloc((size_t)(p->scene->nsurfaces ? p->scene->nsurfaces : 1), sizeof *g->loops);
     g->nloops = sc_alloc((size_t)(p->scene->nsurfaces ? p->scene->nsurfaces : 1), sizeof(int));
+    g->surface_first = sc_alloc((size_t)p->scene->nsurfaces + 1, sizeof(long));
     for (int s = 0; s < p->scene->nsurfaces; s++)
         if (p->scene->surfaces[s].nloops)
             g->loops[s] = orient_loops(&p->scene->surfaces[s], &g->nloops[s]);
@@ -405,6 +402,7 @@ void sc_peer_glu_destroy(sc_peer *p)
         free_loops(g->loops[s], g->nloops[s]);
     free(g->loops);
     free(g->nloops);
+    free(g->surface_first);
     free(g->vertices);
     free(g->indices);
     free(g);
@@ -452,7 +450,7 @@ static void *tessellate(void *arg)
         const sc_surface *sf = &scene->surfaces[s];
         int dim = sf->rational ? 4 : 3;
         g->surface = s;
-        memcpy(g->xform, sf->xform, sizeof g->xform);
+        g->surface_first[s] = g->nvertices;
         glu.LoadSamplingMatrices(g->nurbs, job->modelview[s], job->proj, job->viewport);
         glu.BeginSurface(g->nurbs);
         glu.NurbsSurface(g->nurbs, sf->nu + sf->deg_u + 1, job->knots_u[s], sf->nv + sf->deg_v + 1,
@@ -471,6 +469,7 @@ static void *tessellate(void *arg)
         glu.EndSurface(g->nurbs);
     }
     job->ms = 1e3 * (sc_now() - t0);
+    g->surface_first[ns] = g->nvertices;
     return NULL;
 }
 
@@ -539,6 +538,24 @@ int sc_peer_glu_update(sc_peer *p, const sc_camera *cam, sc_error *err)
         return sc_fail(err, NULL, 0, "cannot start the thread GLU tessellates on");
     const sc_gl *gl = p->gl;
     double t0 = sc_now();
+    /* Surfaces with a transform: their vertices to world space. */
+    static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    for (int s = 0; s < ns; s++) {
+        const double *x = scene->surfaces[s].xform;
+        if (!memcmp(x, identity, sizeof identity))
+            continue;
+        for (long k = g->surface_first[s]; k < g->surface_first[s + 1]; k++) {
+            glu_vertex *v = &g->vertices[k];
+            double q[3] = {v->pos[0], v->pos[1], v->pos[2]}, n[3] = {v->normal[0], v->normal[1],
+                                                                      v->normal[2]};
+            sc_xform_point(x, q, q);
+            sc_xform_normal(x, n, n);
+            for (int c = 0; c < 3; c++) {
+                v->pos[c] = (float)q[c];
+                v->normal[c] = (float)n[c];
+            }
+        }
+    }
     size_t vbytes = (size_t)g->nvertices * sizeof(glu_vertex);
     size_t ibytes = (size_t)g->nindices * sizeof(uint32_t);
     gl->NamedBufferData(p->vertex_buffer, (GLsizeiptr)(vbytes ? vbytes : 4), g->vertices,
