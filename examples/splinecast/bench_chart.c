@@ -455,7 +455,8 @@ static int write_script(const char *dir, const char *scene, const char *families
     for (int o = 0; o < 2; o++) {
         fprintf(f, "set terminal ");
         fprintf(f, outputs[o][0], 420 * nviews);
-        fprintf(f, "\nset output '%s/%s'\n", dir, outputs[o][1]);
+        /* Names are printed as they are: no '_' subscripts. */
+        fprintf(f, "\nset termoption noenhanced\nset output '%s/%s'\n", dir, outputs[o][1]);
         fprintf(f, "set multiplot layout %d,2 title '%s: frame time against accuracy "
                    "(line: Pareto front of rows failing <= %g %% of pixels)'\n",
                 nviews, scene, front_fail_pct);
