@@ -295,3 +295,12 @@ uninstall:
 VIEWER_LIBS = -lglfw -lGL -lpng
 $(BUILD)/viewer: $(BUILD)/examples/viewer/viewer.o $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $< $(LIB) $(LIBS) $(VIEWER_LIBS)
+
+# GLU's tessellator alone (docs/chart.md): the check that the chart's
+# glu-TOL rows time GLU as a program of its own would. Links libGLU, which
+# the library itself only opens at run time.
+.PHONY: glu-tessellate
+glu-tessellate: $(BUILD)/glu_tessellate
+$(BUILD)/glu_tessellate: examples/glu_tessellate.c
+	@mkdir -p $(BUILD)
+	$(CC) $(OPT) -std=c11 -Wall -Wextra -D_DEFAULT_SOURCE -o $@ $< -lGLU -lm

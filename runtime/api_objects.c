@@ -76,6 +76,7 @@ pool sc_api_contexts = {"context", 0, NULL};
 pool sc_api_programs = {"program", 0, NULL};
 pool sc_api_renderers = {"renderer", 0, NULL};
 pool sc_api_frames = {"frame", 0, NULL};
+pool sc_api_peers = {"peer", 0, NULL};
 
 uint32_t sc_api_slot_id(const pool *p, int index)
 {
@@ -243,4 +244,46 @@ void sc_api_destroy_renderer_object(renderer_object *r)
     if (r->scene)   /* NULL for a packed renderer */
         sc_api_release_scene(r->scene);
     free(r);
+}
+
+/* The internal camera of a public one, defaults filled from the scene
+ * (api_private.h). */
+int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
+                       sc_error *err)
+{
+    static const sc_camera_desc defaults = {0};
+    if (!desc)
+        desc = &defaults;
+    memset(cam, 0, sizeof *cam);
+    memcpy(cam->up, desc->up, sizeof cam->up);
+    sc_camera_default_from(scene, desc->from, cam);
+    if (desc->text) {
+        if (sc_camera_parse(desc->text, cam, err) != SC_OK)
+            return SC_FAIL;
+    } else {
+        int given = 0;
+        for (int c = 0; c < 3; c++)
+            given |= desc->eye[c] != 0 || desc->target[c] != 0;
+        if (given) {
+            memcpy(cam->eye, desc->eye, sizeof cam->eye);
+            memcpy(cam->target, desc->target, sizeof cam->target);
+        }
+        if (desc->fovy_deg != 0)
+            cam->fovy_deg = desc->fovy_deg;
+    }
+    if (sc_api_check_int(desc->width, 0, 16384, "sc_camera_desc.width", err) ||
+        sc_api_check_int(desc->height, 0, 16384, "sc_camera_desc.height", err))
+        return SC_FAIL;
+    cam->width = desc->width ? desc->width : 512;
+    cam->height = desc->height ? desc->height : 512;
+    double dist2 = 0;
+    int finite = isfinite(cam->fovy_deg);
+    for (int c = 0; c < 3; c++) {
+        finite &= isfinite(cam->eye[c]) && isfinite(cam->target[c]) && isfinite(cam->up[c]);
+        dist2 += (cam->target[c] - cam->eye[c]) * (cam->target[c] - cam->eye[c]);
+    }
+    if (!finite || !(dist2 > 0) || !(cam->fovy_deg > 0 && cam->fovy_deg < 180))
+        return sc_api_invalid(err, "sc_camera_desc", PROBLEM_CAMERA,
+                       "the eye must differ from the target and fovy_deg lie in (0, 180)");
+    return SC_OK;
 }

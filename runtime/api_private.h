@@ -19,6 +19,7 @@
 #include "gl_context.h"
 #include "gl_pack.h"
 #include "gl_render.h"
+#include "peer.h"
 #include "imgdiff.h"
 #include "io.h"
 #include "nurbs.h"
@@ -70,6 +71,7 @@ typedef struct pool {
 } pool;
 
 extern pool sc_api_scenes, sc_api_contexts, sc_api_programs, sc_api_renderers, sc_api_frames;
+extern pool sc_api_peers;   /* tessellation peers (api_peer.c) */
 
 uint32_t sc_api_slot_id(const pool *p, int index);
 /* Stores object and returns its id, or 0 (err filled) when the pool is full. */
@@ -130,6 +132,12 @@ int sc_api_make_packed_renderer(context_object *c, sc_scene_id scene,
 void sc_api_destroy_renderer_object(renderer_object *r);
 /* A renderer stopped drawing the scene: frees it once its handle is gone too. */
 void sc_api_release_scene(scene_object *s);
+/* The internal camera of a public one (NULL: the default), defaults filled
+ * from the scene (api_objects.c). */
+int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
+                       sc_error *err);
+/* Destroys the peers made on context c (NULL: all of them) (api_peer.c). */
+void sc_api_destroy_peers(const context_object *c);
 /* Copies n key texts into keys (at most capacity) and sets *count. */
 int sc_api_count_keys(const char (*texts)[SCG_KEY_MAX], int n, sc_key *keys, int capacity,
                       int *count, sc_error *err);

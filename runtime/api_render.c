@@ -50,6 +50,7 @@ void sc_destroy_context(sc_context_id ctx)
     context_object *c = sc_api_pool_get(&sc_api_contexts, ctx.id, NULL);
     if (!c)
         return;
+    sc_api_destroy_peers(c);
     for (int i = 0; i < sc_api_renderers.count; i++) {
         renderer_object *r = sc_api_renderers.slots[i].object;
         if (r && r->context == c) {
@@ -133,8 +134,6 @@ int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error
 
 /* ---- renderers ---- */
 
-static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
-                       sc_error *err);
 
 /* The accuracy target of a desc (docs/accuracy.md), refused with the
  * field's name when out of range. */
@@ -154,7 +153,7 @@ static int accuracy_target(const sc_renderer_desc *d, const sc_scene *scene,
                               "%g, %g degrees: %s", d->accuracy_px, d->accuracy_normal_deg, why);
     t->px = d->accuracy_px;
     t->normal_deg = d->accuracy_normal_deg;
-    return make_camera(d->accuracy_view, scene, &t->view, err);
+    return sc_api_make_camera(d->accuracy_view, scene, &t->view, err);
 }
 
 int sc_make_renderer(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
@@ -271,51 +270,10 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
     return SC_OK;
 }
 
-/* The internal camera of a public one, defaults filled from the scene. */
-static int make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
-                       sc_error *err)
-{
-    static const sc_camera_desc defaults = {0};
-    if (!desc)
-        desc = &defaults;
-    memset(cam, 0, sizeof *cam);
-    memcpy(cam->up, desc->up, sizeof cam->up);
-    sc_camera_default_from(scene, desc->from, cam);
-    if (desc->text) {
-        if (sc_camera_parse(desc->text, cam, err) != SC_OK)
-            return SC_FAIL;
-    } else {
-        int given = 0;
-        for (int c = 0; c < 3; c++)
-            given |= desc->eye[c] != 0 || desc->target[c] != 0;
-        if (given) {
-            memcpy(cam->eye, desc->eye, sizeof cam->eye);
-            memcpy(cam->target, desc->target, sizeof cam->target);
-        }
-        if (desc->fovy_deg != 0)
-            cam->fovy_deg = desc->fovy_deg;
-    }
-    if (sc_api_check_int(desc->width, 0, 16384, "sc_camera_desc.width", err) ||
-        sc_api_check_int(desc->height, 0, 16384, "sc_camera_desc.height", err))
-        return SC_FAIL;
-    cam->width = desc->width ? desc->width : 512;
-    cam->height = desc->height ? desc->height : 512;
-    double dist2 = 0;
-    int finite = isfinite(cam->fovy_deg);
-    for (int c = 0; c < 3; c++) {
-        finite &= isfinite(cam->eye[c]) && isfinite(cam->target[c]) && isfinite(cam->up[c]);
-        dist2 += (cam->target[c] - cam->eye[c]) * (cam->target[c] - cam->eye[c]);
-    }
-    if (!finite || !(dist2 > 0) || !(cam->fovy_deg > 0 && cam->fovy_deg < 180))
-        return sc_api_invalid(err, "sc_camera_desc", PROBLEM_CAMERA,
-                       "the eye must differ from the target and fovy_deg lie in (0, 180)");
-    return SC_OK;
-}
-
 int sc_check_camera(const sc_camera_desc *camera, sc_error *err)
 {
     sc_camera cam;
-    return make_camera(camera, NULL, &cam, err);
+    return sc_api_make_camera(camera, NULL, &cam, err);
 }
 
 static void expand_to_rgba(const sc_image *rgb, sc_image *rgba)
@@ -342,7 +300,7 @@ int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err
 {
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     sc_camera cam;
-    if (!r || make_camera(camera, sc_renderer_scene(r->renderer), &cam, err) != SC_OK ||
+    if (!r || sc_api_make_camera(camera, sc_renderer_scene(r->renderer), &cam, err) != SC_OK ||
         sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
     /* In an application's context the renderer's own target is drawn, and
@@ -438,7 +396,7 @@ int sc_render_reference(sc_scene_id scene, const sc_camera_desc *camera,
     out->id = 0;
     scene_object *s = sc_api_pool_get(&sc_api_scenes, scene.id, err);
     sc_camera cam;
-    if (!s || make_camera(camera, &s->scene, &cam, err) != SC_OK)
+    if (!s || sc_api_make_camera(camera, &s->scene, &cam, err) != SC_OK)
         return SC_FAIL;
     if (desc && sc_api_check_int(desc->threads, 0, 1024, "sc_reference_desc.threads", err))
         return SC_FAIL;
@@ -625,6 +583,7 @@ void sc_shutdown(void)
 {
     destroy_all(&sc_api_frames, destroy_frame_id);
     destroy_all(&sc_api_renderers, destroy_renderer_id);
+    sc_api_destroy_peers(NULL);
     /* Contexts take their programs with them. */
     destroy_all(&sc_api_contexts, destroy_context_id);
     free(sc_api_programs.slots);

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "chart.h"
 #include "commands.h"
 #include "options.h"
 
@@ -68,7 +69,12 @@ static const char usage[] =
     "                         untrimmed per method (bench --trim-table --help)\n"
     "  --stability            instead of a scene: the stability suite, every\n"
     "                         method and start against the CPU reference\n"
-    "                         (bench --stability --help)\n";
+    "                         (bench --stability --help)\n"
+    "  --chart DIR            every method, start, iteration cap and hull\n"
+    "                         subdivision and the tessellation peers (GLU,\n"
+    "                         tessellation shaders) in three views against the\n"
+    "                         CPU reference: DIR/points.csv, chart.png, chart.svg\n"
+    "                         (bench --chart DIR --help)\n";
 
 /* A bumpy Bézier patch of degree d × d over [-1, 1]², heights from a fixed
  * pseudo-random sequence, so that Newton has work at every degree: a .bpt
@@ -146,6 +152,8 @@ int cmd_bench(int argc, char **argv)
             return bench_trim_table(argc, argv);
         if (!strcmp(argv[i], "--stability"))
             return bench_stability(argc, argv);
+        if (!strcmp(argv[i], "--chart"))
+            return bench_chart(argc, argv);
     }
     if (cli_wants_help(argc, argv)) {
         fputs(usage, stdout);
