@@ -51,7 +51,9 @@ static const char usage[] =
     "                         one, once a row's frames have taken 2 s)\n"
     "  --configs LIST         only these configurations: comma list of names or\n"
     "                         families (default, newton, broyden, subdiv, bclip,\n"
-    "                         hybrid, hull, glu, tess)\n"
+    "                         hybrid, hull, accuracy, glu, tess); accuracy-PX\n"
+    "                         rows choose their settings from a target of PX\n"
+    "                         pixels, met in the narrowest view drawn\n"
     "  --views LIST           only these views (comma list)\n"
     "  --backend egl|osmesa   GL context (default: EGL, falling back to OSMesa)\n";
 
@@ -138,6 +140,15 @@ static void family_hulls(config_list *l)
     }
 }
 
+/* Settings chosen from an accuracy target (docs/accuracy.md): where the
+ * choice lands against the front. */
+static void family_accuracy(config_list *l)
+{
+    static const double targets[] = {1, 0.1};
+    for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++)
+        add(l, KIND_RAY, "accuracy-%g", targets[i])->desc.accuracy_px = targets[i];
+}
+
 static void family_glu(config_list *l)
 {
     for (size_t i = 0; i < sizeof peer_tolerances / sizeof peer_tolerances[0]; i++)
@@ -152,7 +163,8 @@ static void family_tess(config_list *l)
 
 /* The sweep's families, in the order their rows run. */
 static void (*const families[])(config_list *) = {
-    family_default, family_methods, family_iterations, family_hulls, family_glu, family_tess,
+    family_default, family_methods, family_iterations, family_hulls, family_accuracy,
+    family_glu,     family_tess,
 };
 
 /* A config's family: its name up to the first '-'. */
@@ -517,6 +529,14 @@ static int run_config(sc_context_id ctx, sc_scene_id scene, const config *cfg,
     if (cfg->kind == KIND_RAY) {
         sc_renderer_desc desc = cfg->desc;
         desc.own_programs = 1;  /* compile_ms: compiling, not a cache hit */
+        /* One renderer serves every view: a target is met in the most
+         * demanding of them, the narrowest. */
+        if (desc.accuracy_px > 0) {
+            desc.accuracy_view = &cams[views[0]];
+            for (int v = 1; v < nviews; v++)
+                if (cams[views[v]].fovy_deg < desc.accuracy_view->fovy_deg)
+                    desc.accuracy_view = &cams[views[v]];
+        }
         if (sc_make_renderer(ctx, scene, &desc, &d.renderer, &err) != SC_OK) {
             /* A method or start the compiler does not build (yet) is not a
              * failure of the sweep: noted, as bench --stability does. */
