@@ -28,10 +28,11 @@ static const char usage[] =
     "              [--frames N --screenshot PATH]\n"
     "\n"
     "Mouse: left drag orbits, right or shift-left drag pans, the wheel zooms,\n"
-    "a click picks (prints a `pick` line). Keys: M method, S start (mid,\n"
-    "cpmap), + / - iterations, V view (shade, iters, uv, normal, hull, depth),\n"
-    "T trim method (fast, clip, left), R reset the view, Q or Esc quit.\n"
-    "(No accuracy-target key: the public API has no accuracy option yet.)\n"
+    "a click picks (prints a `pick` line). Keys: M method, S start (cpmap,\n"
+    "mid, view), + / - iterations, V view (shade, iters, uv, normal, hull,\n"
+    "depth), T trim method (fast, clip, left), A accuracy target (off, 1, 0.1,\n"
+    "0.01 px: settings chosen per surface for the current view), R reset the\n"
+    "view, Q or Esc quit.\n"
     "\n"
     "--script FILE runs one command per line and exits: orbit DEG_X DEG_Y,\n"
     "pan FX FY (fractions of the view), zoom F, key C, click X Y, screenshot PATH.\n";
@@ -60,14 +61,16 @@ typedef struct view_state {
 static const sc_method methods[] = {SC_METHOD_HYBRID, SC_METHOD_NEWTON, SC_METHOD_BROYDEN,
                                     SC_METHOD_BCLIP, SC_METHOD_SUBDIV};
 static const char *const method_names[] = {"hybrid", "newton", "broyden", "bclip", "subdiv"};
-static const sc_start starts[] = {SC_START_CPMAP, SC_START_MID};
-static const char *const start_names[] = {"cpmap", "mid"};
+static const sc_start starts[] = {SC_START_CPMAP, SC_START_MID, SC_START_VIEW};
+static const char *const start_names[] = {"cpmap", "mid", "view"};
+/* Accuracy targets in pixels (0: off, the renderer's own settings). */
+static const double accuracies[] = {0, 1, 0.1, 0.01};
 static const sc_show shows[] = {SC_SHOW_SHADE, SC_SHOW_ITERS, SC_SHOW_UV, SC_SHOW_NORMAL,
                                 SC_SHOW_HULL, SC_SHOW_DEPTH};
 static const char *const show_names[] = {"shade", "iters", "uv", "normal", "hull", "depth"};
 static const sc_trim_method trims[] = {SC_TRIM_FAST, SC_TRIM_CLIP, SC_TRIM_LEFT};
 static const char *const trim_names[] = {"fast", "clip", "left"};
-static int method_at, start_at, show_at, trim_at;
+static int method_at, start_at, show_at, trim_at, accuracy_at;
 
 static void report(const sc_error *err)
 {
@@ -102,6 +105,12 @@ static int make_renderer(view_state *v)
     v->desc.start = starts[start_at];
     v->desc.show = shows[show_at];
     v->desc.trim = trims[trim_at];
+    /* A target is met for the view the renderer is made in. */
+    char cam[400];
+    camera_text(v, cam, sizeof cam);
+    sc_camera_desc accuracy_view = {.width = v->width, .height = v->height, .text = cam};
+    v->desc.accuracy_px = accuracies[accuracy_at];
+    v->desc.accuracy_view = accuracies[accuracy_at] > 0 ? &accuracy_view : NULL;
     if (sc_make_renderer(v->ctx, v->scene, &v->desc, &v->renderer, &err) != SC_OK) {
         report(&err);
         return 0;
@@ -140,14 +149,14 @@ static int render(view_state *v)
     char title[512];
     snprintf(title, sizeof title,
              "splinecast viewer: %s start=%s iters=%d view=%s trim=%s | %.1f ms, %d programs, "
-             "%d hulls, %d draw calls", method_names[method_at], start_names[start_at],
+             "%d hulls, %d draw calls, accuracy %g px", method_names[method_at], start_names[start_at],
              v->desc.max_iters ? v->desc.max_iters : 6, show_names[show_at], trim_names[trim_at],
-             v->frame_ms, stats.programs, stats.hulls, stats.draw_calls);
+             v->frame_ms, stats.programs, stats.hulls, stats.draw_calls, accuracies[accuracy_at]);
     glfwSetWindowTitle(v->window, title);
     printf("viewer frame=%d camera=%s method=%s start=%s iters=%d view=%s trim=%s frame_ms=%.2f "
-           "programs=%d hulls=%d\n", v->frame_count++, cam, method_names[method_at],
+           "programs=%d hulls=%d accuracy=%g\n", v->frame_count++, cam, method_names[method_at],
            start_names[start_at], v->desc.max_iters ? v->desc.max_iters : 6, show_names[show_at],
-           trim_names[trim_at], v->frame_ms, stats.programs, stats.hulls);
+           trim_names[trim_at], v->frame_ms, stats.programs, stats.hulls, accuracies[accuracy_at]);
     fflush(stdout);
     v->dirty = 0;
     return 1;
@@ -288,7 +297,8 @@ static void key(view_state *v, int c)
 {
     switch (c) {
     case 'M': method_at = (method_at + 1) % 5; v->renderer_dirty = 1; break;
-    case 'S': start_at = (start_at + 1) % 2; v->renderer_dirty = 1; break;
+    case 'S': start_at = (start_at + 1) % 3; v->renderer_dirty = 1; break;
+    case 'A': accuracy_at = (accuracy_at + 1) % 4; v->renderer_dirty = 1; break;
     case 'V': show_at = (show_at + 1) % 6; v->renderer_dirty = 1; break;
     case 'T': trim_at = (trim_at + 1) % 3; v->renderer_dirty = 1; break;
     case '+': case '=':
