@@ -29,7 +29,7 @@ static const char usage[] =
     "  --camera EX,EY,EZ,TX,TY,TZ,FOVY   the view (default: framing the terrain)\n"
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --tol PX               tolerance in pixel footprints (default 0.05)\n"
-    "  --view shade|uv|iters|normal|depth|hull   what the PNG shows (default shade)\n"
+    "  --view shade|uv|iters|normal|depth|hull|reflect   what the PNG shows (default shade)\n"
     "  --ert none|conservative|manual|manual-both   early ray termination\n"
     "                         (default manual)\n"
     "  --order front-to-back|by-program|hybrid   draw order instead of the\n"

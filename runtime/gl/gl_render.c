@@ -529,6 +529,8 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
         sc_image_alloc(img, t->width, t->height, 4);
         if (r->desc.view == SC_SHOW_NORMAL)
             grey_view(a, a->normal, 3, 1, img);
+        else if (r->desc.view == SC_SHOW_REFLECT)
+            sc_view_reflect(a, img);
         else
             grey_view(a, a->t, 1, 0, img);
     }
