@@ -19,7 +19,8 @@
 /* Barycentric slack at the domain's edges: a ray through a shared edge
  * must not slip between the two neighbours' clipped segments by rounding. */
 #define EDGE_SLACK 1.0e-5f
-/* Relative slack of the prism's height range, for rays grazing its top. */
+/* Relative slack of the prism's height range, for rays grazing its top;
+ * never below the tolerance (prism_segment). */
 #define HEIGHT_SLACK 1.0e-4f
 /* Stand-in for "unbounded" in the clipping of the ray to the prism. */
 #define FAR 1.0e30f
@@ -156,9 +157,14 @@ static void prism_segment(tri_ctx *c, scg_value a, scg_value slope, scg_value *t
         zmin = scg_min(b, zmin, c->z[k]);
         zmax = scg_max(b, zmax, c->z[k]);
     }
+    /* At least the tolerance: a hit on a level part of the patch at its
+     * lowest (or highest) coefficient lies on the slab's face, and a slack
+     * relative to the spread alone can fall below the rounding of the
+     * origin's height, which then cuts the root off (two holes of
+     * hills33.pgm, where 8-bit data are level over whole patches). */
     scg_value spread = scg_sub(b, zmax, zmin);
-    scg_value extent = scg_max(b, spread, c->tol);
-    scg_value margin = scg_mul(b, extent, scg_const_f(b, HEIGHT_SLACK));
+    scg_value relative = scg_mul(b, spread, scg_const_f(b, HEIGHT_SLACK));
+    scg_value margin = scg_max(b, relative, c->tol);
     scg_value floor_z = scg_sub(b, zmin, margin);
     scg_value roof_z = scg_add(b, zmax, margin);
     scg_value oz = scg_comp(b, c->origin, 2), dz = scg_comp(b, c->dir, 2);
