@@ -234,6 +234,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->batch_hulls = d->batch_hulls;
     r->gpu_memory_budget = d->gpu_memory_budget;
     r->method = d->method;
+    r->deferred = d->deferred != 0;
     return SC_OK;
 }
 

@@ -181,3 +181,56 @@ TEST(tri_gl_reflection_lines)
     sc_destroy_renderer(renderer);
     sc_shutdown();
 }
+
+/* Deferred shading: the intersection program writes the AOVs only (its
+ * key has no `shade`), a full-screen pass shades from the hit's domain
+ * point and the patch's exact normal; the image matches the forward
+ * render's. */
+TEST(tri_gl_deferred_shading)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    sc_scene_desc sdesc = {.franke = 144};
+    CHECK_INT(sc_make_scene(&sdesc, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_camera_desc camera = {.width = 128, .height = 96, .text = "1.6,-1.2,1.4,0.5,0.5,0.2,35"};
+    sc_image img[2] = {{0}};
+    for (int deferred = 0; deferred < 2; deferred++) {
+        sc_renderer_id renderer;
+        sc_renderer_desc desc = {.deferred = deferred};
+        CHECK_INT(sc_make_renderer(ctx, scene, &desc, &renderer, &err), SC_OK);
+        sc_key key;
+        int count = 0;
+        CHECK_INT(sc_query_renderer_keys(renderer, &key, 1, &count, &err), SC_OK);
+        CHECK_STR(key.text, deferred ? "tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert1-out.aov"
+                                     : "tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert1-out.shade.aov");
+        sc_frame_id frame;
+        CHECK_INT(sc_render(renderer, &camera, &frame, &err), SC_OK);
+        char png[512];
+        snprintf(png, sizeof png, "%s/deferred%d.png", test_tmpdir(), deferred);
+        CHECK_INT(sc_save_png(frame, png, &err), SC_OK);
+        CHECK_INT(sc_png_read(png, &img[deferred], &err), SC_OK);
+        sc_destroy_frame(frame);
+        sc_destroy_renderer(renderer);
+    }
+    long n = (long)img[0].width * img[0].height, lit = 0, close = 0;
+    for (long p = 0; p < n; p++) {
+        int d = 0;
+        for (int k = 0; k < 3; k++)
+            d = abs(img[0].pixels[4 * p + k] - img[1].pixels[4 * p + k]) > d
+                    ? abs(img[0].pixels[4 * p + k] - img[1].pixels[4 * p + k])
+                    : d;
+        close += d <= 1;
+        lit += img[0].pixels[4 * p] != 51;   /* not the background grey */
+    }
+    printf("  %ld pixels, %ld lit, %ld within 1 level of the forward render\n", n, lit, close);
+    CHECK(lit > 2000);
+    CHECK(close >= n - n / 1000);
+    sc_image_free(&img[0]);
+    sc_image_free(&img[1]);
+    sc_shutdown();
+}
