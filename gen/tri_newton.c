@@ -17,8 +17,13 @@
 #include "tri_newton.h"
 
 /* Barycentric slack at the domain's edges: a ray through a shared edge
- * must not slip between the two neighbours' clipped segments by rounding. */
+ * must not slip between the two neighbours' clipped segments by rounding.
+ * (10^-4 gave false hits: a patch's polynomial continued past a crease or
+ * the mesh's border.) */
 #define EDGE_SLACK 1.0e-5f
+/* Fraction of the tolerance by which g's BB-coefficients must clear zero
+ * for the ray to be rejected before any iteration (no_root). */
+#define ROOT_MARGIN 0.01f
 /* Relative slack of the prism's height range, for rays grazing its top;
  * never below the tolerance (prism_segment). */
 #define HEIGHT_SLACK 1.0e-4f
@@ -328,17 +333,22 @@ static void newton_step(tri_ctx *c, const scg_value *g, scg_value x_var, scg_val
     scg_name(b, NULL);
 }
 
-/* True when every BB-coefficient of g has the sign of g[0] strictly: by
- * the convex hull property g has no root in [0, 1]. */
+/* True when every BB-coefficient of g has one sign, clear of zero by
+ * ROOT_MARGIN of the tolerance: by the convex hull property g has no root
+ * in [0, 1]. The margin keeps a root at an end of the segment (a hit on
+ * the edge two patches share) from being rejected by both for the
+ * rounding of g there (tri_program_shared_edge). */
 static scg_value no_root(tri_ctx *c, const scg_value *g)
 {
     scg_builder *b = c->b;
     scg_name(b, "no_root");
-    scg_value all_pos = scg_lt(b, c->zero, g[0]);
-    scg_value all_neg = scg_lt(b, g[0], c->zero);
+    scg_value margin = scg_mul(b, c->tol, scg_const_f(b, ROOT_MARGIN));
+    scg_value minus_margin = scg_neg(b, margin);
+    scg_value all_pos = scg_lt(b, margin, g[0]);
+    scg_value all_neg = scg_lt(b, g[0], minus_margin);
     for (int i = 1; i <= c->n; i++) {
-        all_pos = scg_and(b, all_pos, scg_lt(b, c->zero, g[i]));
-        all_neg = scg_and(b, all_neg, scg_lt(b, g[i], c->zero));
+        all_pos = scg_and(b, all_pos, scg_lt(b, margin, g[i]));
+        all_neg = scg_and(b, all_neg, scg_lt(b, g[i], minus_margin));
     }
     scg_value none = scg_or(b, all_pos, all_neg);
     scg_name(b, NULL);

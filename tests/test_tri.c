@@ -347,3 +347,72 @@ TEST(tri_program_level_patch_floor)
     sc_tri_tracer_free(&tr);
     sc_tri_mesh_free(&m);
 }
+
+/* Rays that meet the surface on the shared edge of two patches: in a view
+ * of Franke's C2 terrain (N = 576) from 3.6 units away, 256 × 256, the
+ * GPU missed pixel (181, 190), whose hit lies 10^-6 of a square from a
+ * diagonal, and so did this interpreted program: both patches' segments
+ * end within the edge slack (10^-5, barycentric) of the root, where the
+ * rounding of g at the ray's height (about 2·10^-7 here) is of the size of
+ * g's change over the slack, and g's BB-coefficients came out of one sign
+ * in both. The rejection now needs them clear of zero by 1 % of the
+ * tolerance. The block of pixels around it, every patch whose box each
+ * ray passes: no holes. */
+TEST(tri_program_shared_edge)
+{
+    sc_heights h;
+    sc_error err;
+    CHECK_INT(sc_spline_franke_heights(SC_SPLINE_C2, 576, &h, &err), SC_OK);
+    sc_tri_mesh m;
+    CHECK_INT(sc_spline_build(&h, SC_SPLINE_C2, &m, &err), SC_OK);
+    sc_heights_free(&h);
+    sc_tri_tracer tr;
+    sc_tri_tracer_init(&tr, &m);
+    sc_camera cam = {.width = 256, .height = 256};
+    CHECK_INT(sc_camera_parse("1.9059530054358034,-2.3119060108716067,2.2976726618008212,"
+                              "0.5,0.5,0.61052905527785706,30",
+                              &cam, &err),
+              SC_OK);
+    scg_key key;
+    scg_program *prog = NULL;
+    scg_interp *it = NULL;
+    CHECK_INT(scg_key_parse(TRI_KEY, &key, &err), SC_OK);
+    CHECK_INT(scg_build_program(&key, &prog, &err), SC_OK);
+    CHECK_INT(scg_interp_create(prog, &it, &err), SC_OK);
+    float *records, *points;
+    pack(&m, &records, &points);
+    scg_interp_env env;
+    memset(&env, 0, sizeof env);
+    env.texels[SCG_TEX_POINTS] = points;
+    env.texel_count[SCG_TEX_POINTS] = 15 * m.count;
+    env.texels[SCG_TEX_RECORDS] = records;
+    env.texel_count[SCG_TEX_RECORDS] = SCG_RECORD_TEXELS * m.count;
+    env.uniforms[SCG_UNI_FOOTPRINT][0] = (float)sc_camera_footprint(&cam, 1);
+    env.inputs[SCG_IN_T_LIMIT][0] = 3.0e38f;
+    int ref_hits = 0, holes = 0;
+    for (int j = 184; j < 197; j++)
+        for (int i = 175; i < 188; i++) {
+            double dir[3];
+            sc_camera_ray(&cam, i + 0.5, j + 0.5, dir);
+            sc_tri_hit ref;
+            if (sc_tri_tracer_trace(&tr, cam.eye, dir, 0, &ref) != SC_OK)
+                continue;
+            ref_hits++;
+            int hit = 0;
+            for (int p = 0; p < m.count && !hit; p++) {
+                scg_interp_result res;
+                hit = passes_box(&m, p, cam.eye, dir) &&
+                      run_patch(it, &env, records, p, cam.eye, dir, 0.99 * ref.t, &res);
+            }
+            holes += !hit;
+        }
+    printf("  %d reference hits, %d holes\n", ref_hits, holes);
+    CHECK(ref_hits > 100);
+    CHECK_INT(holes, 0);
+    free(records);
+    free(points);
+    scg_interp_free(it);
+    scg_program_free(prog);
+    sc_tri_tracer_free(&tr);
+    sc_tri_mesh_free(&m);
+}
