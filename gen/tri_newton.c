@@ -17,9 +17,15 @@
 #include "tri_newton.h"
 
 /* Barycentric slack at the domain's edges: a ray through a shared edge
- * must not slip between the two neighbours' clipped segments by rounding. */
+ * must not slip between the two neighbours' clipped segments by rounding.
+ * (10^-4 gave false hits: a patch's polynomial continued past a crease or
+ * the mesh's border.) */
 #define EDGE_SLACK 1.0e-5f
-/* Relative slack of the prism's height range, for rays grazing its top. */
+/* Fraction of the tolerance by which g's BB-coefficients must clear zero
+ * for the ray to be rejected before any iteration (no_root). */
+#define ROOT_MARGIN 0.01f
+/* Relative slack of the prism's height range, for rays grazing its top;
+ * never below the tolerance (prism_segment). */
 #define HEIGHT_SLACK 1.0e-4f
 /* Stand-in for "unbounded" in the clipping of the ray to the prism. */
 #define FAR 1.0e30f
@@ -156,9 +162,14 @@ static void prism_segment(tri_ctx *c, scg_value a, scg_value slope, scg_value *t
         zmin = scg_min(b, zmin, c->z[k]);
         zmax = scg_max(b, zmax, c->z[k]);
     }
+    /* At least the tolerance: a hit on a level part of the patch at its
+     * lowest (or highest) coefficient lies on the slab's face, and a slack
+     * relative to the spread alone can fall below the rounding of the
+     * origin's height, which then cuts the root off (two holes of
+     * hills33.pgm, where 8-bit data are level over whole patches). */
     scg_value spread = scg_sub(b, zmax, zmin);
-    scg_value extent = scg_max(b, spread, c->tol);
-    scg_value margin = scg_mul(b, extent, scg_const_f(b, HEIGHT_SLACK));
+    scg_value relative = scg_mul(b, spread, scg_const_f(b, HEIGHT_SLACK));
+    scg_value margin = scg_max(b, relative, c->tol);
     scg_value floor_z = scg_sub(b, zmin, margin);
     scg_value roof_z = scg_add(b, zmax, margin);
     scg_value oz = scg_comp(b, c->origin, 2), dz = scg_comp(b, c->dir, 2);
@@ -322,17 +333,22 @@ static void newton_step(tri_ctx *c, const scg_value *g, scg_value x_var, scg_val
     scg_name(b, NULL);
 }
 
-/* True when every BB-coefficient of g has the sign of g[0] strictly: by
- * the convex hull property g has no root in [0, 1]. */
+/* True when every BB-coefficient of g has one sign, clear of zero by
+ * ROOT_MARGIN of the tolerance: by the convex hull property g has no root
+ * in [0, 1]. The margin keeps a root at an end of the segment (a hit on
+ * the edge two patches share) from being rejected by both for the
+ * rounding of g there (tri_program_shared_edge). */
 static scg_value no_root(tri_ctx *c, const scg_value *g)
 {
     scg_builder *b = c->b;
     scg_name(b, "no_root");
-    scg_value all_pos = scg_lt(b, c->zero, g[0]);
-    scg_value all_neg = scg_lt(b, g[0], c->zero);
+    scg_value margin = scg_mul(b, c->tol, scg_const_f(b, ROOT_MARGIN));
+    scg_value minus_margin = scg_neg(b, margin);
+    scg_value all_pos = scg_lt(b, margin, g[0]);
+    scg_value all_neg = scg_lt(b, g[0], minus_margin);
     for (int i = 1; i <= c->n; i++) {
-        all_pos = scg_and(b, all_pos, scg_lt(b, c->zero, g[i]));
-        all_neg = scg_and(b, all_neg, scg_lt(b, g[i], c->zero));
+        all_pos = scg_and(b, all_pos, scg_lt(b, margin, g[i]));
+        all_neg = scg_and(b, all_neg, scg_lt(b, g[i], minus_margin));
     }
     scg_value none = scg_or(b, all_pos, all_neg);
     scg_name(b, NULL);

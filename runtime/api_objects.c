@@ -202,7 +202,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         sc_api_check_int(d->hull_max_depth, 0, 32, "sc_renderer_desc.hull_max_depth", err) ||
         sc_api_check_enum(d->start, SC_START_VIEW + 1, "sc_renderer_desc.start", err) ||
         sc_api_check_int(d->max_iters, 0, SCG_MAX_ITERS, "sc_renderer_desc.max_iters", err) ||
-        sc_api_check_enum(d->show, SC_SHOW_HULL + 1, "sc_renderer_desc.show", err) ||
+        sc_api_check_enum(d->show, SC_SHOW_REFLECT + 1, "sc_renderer_desc.show", err) ||
         sc_api_check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
                   err) ||
         sc_api_check_enum(d->trim, SC_TRIM_NONE + 1, "sc_renderer_desc.trim", err) ||
@@ -234,6 +234,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->batch_hulls = d->batch_hulls;
     r->gpu_memory_budget = d->gpu_memory_budget;
     r->method = d->method;
+    r->deferred = d->deferred != 0;
     return SC_OK;
 }
 

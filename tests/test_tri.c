@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "camera.h"
+#include "heights.h"
 #include "ir.h"
 #include "splines.h"
 #include "test.h"
@@ -268,6 +270,145 @@ TEST(tri_program_matches_reference)
            rays, ref_hits, holes, false_hits, off, worst, iters);
     CHECK(ref_hits > rays * 9 / 10);
     CHECK(holes + false_hits + off <= rays / 100);
+    free(records);
+    free(points);
+    scg_interp_free(it);
+    scg_program_free(prog);
+    sc_tri_tracer_free(&tr);
+    sc_tri_mesh_free(&m);
+}
+
+/* hills33.pgm as it is (8-bit heights, level over whole patches): rays of
+ * the default 400 × 400 view (a block around the two pixels the GPU once missed), where
+ * the hit lies on a level part of a patch at its lowest coefficient, that
+ * is on the floor of its prism. The prism's height slack was relative to
+ * the patch's spread (6.5e-4 here) and fell below the rounding of the
+ * ray origin's height, so the clipped segment could end just above the
+ * root. Every ray the reference hits is hit, on the reference's patch. */
+TEST(tri_program_level_patch_floor)
+{
+    sc_heights h;
+    sc_error err;
+    CHECK_INT(sc_heights_read("examples/scenes/hills33.pgm", 1, 1, &h, &err), SC_OK);
+    h.dx = h.dy = 1.0 / 32;
+    sc_tri_mesh m;
+    CHECK_INT(sc_spline_build(&h, SC_SPLINE_C2, &m, &err), SC_OK);
+    sc_heights_free(&h);
+    sc_tri_tracer tr;
+    sc_tri_tracer_init(&tr, &m);
+    sc_camera cam = {.width = 400, .height = 400};
+    CHECK_INT(sc_camera_parse("1.6200062769270676,-1.7400125538541351,1.6285663558418926,"
+                              "0.5,0.5,0.28455882352941175,30",
+                              &cam, &err),
+              SC_OK);
+    scg_key key;
+    scg_program *prog = NULL;
+    scg_interp *it = NULL;
+    CHECK_INT(scg_key_parse(TRI_KEY, &key, &err), SC_OK);
+    CHECK_INT(scg_build_program(&key, &prog, &err), SC_OK);
+    CHECK_INT(scg_interp_create(prog, &it, &err), SC_OK);
+    float *records, *points;
+    pack(&m, &records, &points);
+    scg_interp_env env;
+    memset(&env, 0, sizeof env);
+    env.texels[SCG_TEX_POINTS] = points;
+    env.texel_count[SCG_TEX_POINTS] = 15 * m.count;
+    env.texels[SCG_TEX_RECORDS] = records;
+    env.texel_count[SCG_TEX_RECORDS] = SCG_RECORD_TEXELS * m.count;
+    env.uniforms[SCG_UNI_FOOTPRINT][0] = (float)sc_camera_footprint(&cam, 1);
+    env.inputs[SCG_IN_T_LIMIT][0] = 3.0e38f;
+    int level = 0, holes = 0;
+    for (int j = 150; j < 300; j++)
+        for (int i = 40; i < 160; i++) {
+            double dir[3];
+            sc_camera_ray(&cam, i + 0.5, j + 0.5, dir);
+            sc_tri_hit ref;
+            if (sc_tri_tracer_trace(&tr, cam.eye, dir, 0, &ref) != SC_OK)
+                continue;
+            const double *coef = m.coef + (size_t)ref.patch * 15;
+            double zmin = coef[0];
+            for (int k = 1; k < 15; k++)
+                zmin = fmin(zmin, coef[k]);
+            if (fabs(ref.point[2] - zmin) > 1e-7)
+                continue;
+            level++;
+            /* The fragment's ray reaches the prism near the hit, as the
+             * rasterised proxy gives it. */
+            scg_interp_result res;
+            holes += !run_patch(it, &env, records, ref.patch, cam.eye, dir, 0.99 * ref.t, &res);
+        }
+    printf("  %d rays hit a patch at its lowest coefficient, %d holes\n", level, holes);
+    CHECK(level >= 9);
+    CHECK_INT(holes, 0);
+    free(records);
+    free(points);
+    scg_interp_free(it);
+    scg_program_free(prog);
+    sc_tri_tracer_free(&tr);
+    sc_tri_mesh_free(&m);
+}
+
+/* Rays that meet the surface on the shared edge of two patches: in a view
+ * of Franke's C2 terrain (N = 576) from 3.6 units away, 256 × 256, the
+ * GPU missed pixel (181, 190), whose hit lies 10^-6 of a square from a
+ * diagonal, and so did this interpreted program: both patches' segments
+ * end within the edge slack (10^-5, barycentric) of the root, where the
+ * rounding of g at the ray's height (about 2·10^-7 here) is of the size of
+ * g's change over the slack, and g's BB-coefficients came out of one sign
+ * in both. The rejection now needs them clear of zero by 1 % of the
+ * tolerance. The block of pixels around it, every patch whose box each
+ * ray passes: no holes. */
+TEST(tri_program_shared_edge)
+{
+    sc_heights h;
+    sc_error err;
+    CHECK_INT(sc_spline_franke_heights(SC_SPLINE_C2, 576, &h, &err), SC_OK);
+    sc_tri_mesh m;
+    CHECK_INT(sc_spline_build(&h, SC_SPLINE_C2, &m, &err), SC_OK);
+    sc_heights_free(&h);
+    sc_tri_tracer tr;
+    sc_tri_tracer_init(&tr, &m);
+    sc_camera cam = {.width = 256, .height = 256};
+    CHECK_INT(sc_camera_parse("1.9059530054358034,-2.3119060108716067,2.2976726618008212,"
+                              "0.5,0.5,0.61052905527785706,30",
+                              &cam, &err),
+              SC_OK);
+    scg_key key;
+    scg_program *prog = NULL;
+    scg_interp *it = NULL;
+    CHECK_INT(scg_key_parse(TRI_KEY, &key, &err), SC_OK);
+    CHECK_INT(scg_build_program(&key, &prog, &err), SC_OK);
+    CHECK_INT(scg_interp_create(prog, &it, &err), SC_OK);
+    float *records, *points;
+    pack(&m, &records, &points);
+    scg_interp_env env;
+    memset(&env, 0, sizeof env);
+    env.texels[SCG_TEX_POINTS] = points;
+    env.texel_count[SCG_TEX_POINTS] = 15 * m.count;
+    env.texels[SCG_TEX_RECORDS] = records;
+    env.texel_count[SCG_TEX_RECORDS] = SCG_RECORD_TEXELS * m.count;
+    env.uniforms[SCG_UNI_FOOTPRINT][0] = (float)sc_camera_footprint(&cam, 1);
+    env.inputs[SCG_IN_T_LIMIT][0] = 3.0e38f;
+    int ref_hits = 0, holes = 0;
+    for (int j = 184; j < 197; j++)
+        for (int i = 175; i < 188; i++) {
+            double dir[3];
+            sc_camera_ray(&cam, i + 0.5, j + 0.5, dir);
+            sc_tri_hit ref;
+            if (sc_tri_tracer_trace(&tr, cam.eye, dir, 0, &ref) != SC_OK)
+                continue;
+            ref_hits++;
+            int hit = 0;
+            for (int p = 0; p < m.count && !hit; p++) {
+                scg_interp_result res;
+                hit = passes_box(&m, p, cam.eye, dir) &&
+                      run_patch(it, &env, records, p, cam.eye, dir, 0.99 * ref.t, &res);
+            }
+            holes += !hit;
+        }
+    printf("  %d reference hits, %d holes\n", ref_hits, holes);
+    CHECK(ref_hits > 100);
+    CHECK_INT(holes, 0);
     free(records);
     free(points);
     scg_interp_free(it);

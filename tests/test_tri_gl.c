@@ -7,8 +7,11 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
+#include "aov.h"
+#include "image.h"
 #include "splinecast.h"
 #include "test.h"
+#include "view_legend.h"
 
 /* One frame of Franke's C2 terrain (N = 144: 288 patches) with the given
  * order, compared with the reference. */
@@ -117,4 +120,117 @@ TEST(tri_cli_splines_error_line)
     CHECK_INT(test_run(cmd, &out, NULL), 0);
     CHECK_CONTAINS(out, "splines scheme=c2 patches=2048");
     free(out);
+}
+
+/* The reflection-line view (Figs. 15–17 of seed 004) of the C0 spline:
+ * stripes drawn from the GPU's normals agree with the same stripes drawn
+ * from the exact reference's normals, and the image holds both stripe
+ * colours. */
+TEST(tri_gl_reflection_lines)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    sc_scene_desc sdesc = {.franke = 144, .scheme = SC_SCHEME_C0};
+    CHECK_INT(sc_make_scene(&sdesc, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_renderer_id renderer;
+    sc_renderer_desc desc = {.show = SC_SHOW_REFLECT};
+    CHECK_INT(sc_make_renderer(ctx, scene, &desc, &renderer, &err), SC_OK);
+    sc_camera_desc camera = {.width = 128, .height = 96, .text = "1.6,-1.2,1.4,0.5,0.5,0.2,35"};
+    sc_frame_id gpu, ref;
+    CHECK_INT(sc_render(renderer, &camera, &gpu, &err), SC_OK);
+    CHECK_INT(sc_render_reference(scene, &camera, NULL, &ref, &err), SC_OK);
+    char png[512], aov_path[512];
+    snprintf(png, sizeof png, "%s/reflect.png", test_tmpdir());
+    snprintf(aov_path, sizeof aov_path, "%s/reflect_ref.aov", test_tmpdir());
+    CHECK_INT(sc_save_png(gpu, png, &err), SC_OK);
+    CHECK_INT(sc_save_aov(ref, aov_path, &err), SC_OK);
+    sc_image img = {0}, expect = {0};
+    sc_aov aov = {0};
+    CHECK_INT(sc_png_read(png, &img, &err), SC_OK);
+    CHECK_INT(sc_aov_read(aov_path, &aov, &err), SC_OK);
+    sc_image_alloc(&expect, aov.width, aov.height, 4);
+    sc_view_reflect(&aov, &expect);
+    long both = 0, close = 0, dark = 0, bright = 0;
+    /* Above the legend strip. */
+    for (int y = 0; y < img.height - 16; y++)
+        for (int x = 0; x < img.width; x++) {
+            int p = y * img.width + x;
+            if (aov.surface[p] < 0)
+                continue;
+            int g = img.pixels[4 * p], e = expect.pixels[4 * p];
+            both++;
+            close += abs(g - e) <= 8;
+            dark += g < 60;
+            bright += g > 220;
+        }
+    printf("  %ld pixels, %ld within 8 grey levels, %ld dark, %ld bright\n", both, close, dark,
+           bright);
+    CHECK(both > 2000);
+    CHECK(close >= 0.97 * both);
+    CHECK(dark > 0.1 * both && bright > 0.1 * both);
+    sc_image_free(&img);
+    sc_image_free(&expect);
+    sc_aov_free(&aov);
+    sc_destroy_frame(gpu);
+    sc_destroy_frame(ref);
+    sc_destroy_renderer(renderer);
+    sc_shutdown();
+}
+
+/* Deferred shading: the intersection program writes the AOVs only (its
+ * key has no `shade`), a full-screen pass shades from the hit's domain
+ * point and the patch's exact normal; the image matches the forward
+ * render's. */
+TEST(tri_gl_deferred_shading)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    sc_scene_desc sdesc = {.franke = 144};
+    CHECK_INT(sc_make_scene(&sdesc, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_camera_desc camera = {.width = 128, .height = 96, .text = "1.6,-1.2,1.4,0.5,0.5,0.2,35"};
+    sc_image img[2] = {{0}};
+    for (int deferred = 0; deferred < 2; deferred++) {
+        sc_renderer_id renderer;
+        sc_renderer_desc desc = {.deferred = deferred};
+        CHECK_INT(sc_make_renderer(ctx, scene, &desc, &renderer, &err), SC_OK);
+        sc_key key;
+        int count = 0;
+        CHECK_INT(sc_query_renderer_keys(renderer, &key, 1, &count, &err), SC_OK);
+        CHECK_STR(key.text, deferred ? "tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert1-out.aov"
+                                     : "tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert1-out.shade.aov");
+        sc_frame_id frame;
+        CHECK_INT(sc_render(renderer, &camera, &frame, &err), SC_OK);
+        char png[512];
+        snprintf(png, sizeof png, "%s/deferred%d.png", test_tmpdir(), deferred);
+        CHECK_INT(sc_save_png(frame, png, &err), SC_OK);
+        CHECK_INT(sc_png_read(png, &img[deferred], &err), SC_OK);
+        sc_destroy_frame(frame);
+        sc_destroy_renderer(renderer);
+    }
+    long n = (long)img[0].width * img[0].height, lit = 0, close = 0;
+    for (long p = 0; p < n; p++) {
+        int d = 0;
+        for (int k = 0; k < 3; k++)
+            d = abs(img[0].pixels[4 * p + k] - img[1].pixels[4 * p + k]) > d
+                    ? abs(img[0].pixels[4 * p + k] - img[1].pixels[4 * p + k])
+                    : d;
+        close += d <= 1;
+        lit += img[0].pixels[4 * p] != 51;   /* not the background grey */
+    }
+    printf("  %ld pixels, %ld lit, %ld within 1 level of the forward render\n", n, lit, close);
+    CHECK(lit > 2000);
+    CHECK(close >= n - n / 1000);
+    sc_image_free(&img[0]);
+    sc_image_free(&img[1]);
+    sc_shutdown();
 }

@@ -34,7 +34,7 @@ static const char usage[] =
     "                         (default hybrid; with subdiv, --iters is the\n"
     "                         stack depth, default 24; with bclip, the\n"
     "                         clipping steps, default 32)\n"
-    "  --view shade|uv|iters|normal|depth|hull\n"
+    "  --view shade|uv|iters|normal|depth|hull|reflect\n"
     "                         what the PNG shows (default shade); hull: each\n"
     "                         proxy hull in its own colour, dim where its ray\n"
     "                         misses the surface\n"

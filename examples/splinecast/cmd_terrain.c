@@ -29,7 +29,7 @@ static const char usage[] =
     "  --camera EX,EY,EZ,TX,TY,TZ,FOVY   the view (default: framing the terrain)\n"
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --tol PX               tolerance in pixel footprints (default 0.05)\n"
-    "  --view shade|uv|iters|normal|depth|hull   what the PNG shows (default shade)\n"
+    "  --view shade|uv|iters|normal|depth|hull|reflect   what the PNG shows (default shade)\n"
     "  --ert none|conservative|manual|manual-both   early ray termination\n"
     "                         (default manual)\n"
     "  --order front-to-back|by-program|hybrid   draw order instead of the\n"
@@ -37,6 +37,8 @@ static const char usage[] =
     "  --frames N             frames timed after a warm-up frame (default 5)\n"
     "  --backend egl|osmesa   GL context\n"
     "  --ref                  also render the CPU reference and print its accuracy\n"
+    "  --deferred             shade in a full-screen pass from the AOVs (the\n"
+    "                         intersection programs write no colour)\n"
     "\n"
     "stdout: stats scheme=S patches=N programs=N hulls=N gpu_bytes=N compile_ms=T\n"
     "        frame_ms=T covered_px=N mpix_s=X draw_calls=N readbacks=N culled_hulls=N\n"
@@ -138,6 +140,8 @@ int cmd_terrain(int argc, char **argv)
                 return cli_usage_error("terrain", "--frames takes 1 to 1000, not '%s'", argv[i]);
         } else if (!strcmp(a, "--ref")) {
             with_ref = 1;
+        } else if (!strcmp(a, "--deferred")) {
+            rdesc.deferred = 1;
         } else if (a[0] != '-' && !sdesc.heights) {
             sdesc.heights = a;
         } else {

@@ -16,7 +16,8 @@ typedef struct spelling {
 
 static const spelling shows[] = {
     {"shade", SC_SHOW_SHADE}, {"uv", SC_SHOW_UV},       {"iters", SC_SHOW_ITERS},
-    {"normal", SC_SHOW_NORMAL}, {"depth", SC_SHOW_DEPTH}, {"hull", SC_SHOW_HULL}};
+    {"normal", SC_SHOW_NORMAL}, {"depth", SC_SHOW_DEPTH}, {"hull", SC_SHOW_HULL},
+    {"reflect", SC_SHOW_REFLECT}};
 static const spelling trims[] = {
     {"clip", SC_TRIM_CLIP}, {"left", SC_TRIM_LEFT}, {"fast", SC_TRIM_FAST}};
 static const spelling terminations[] = {

@@ -76,17 +76,19 @@ typedef enum sc_ray_termination {
 } sc_ray_termination;
 
 /* What the image shows. shade, uv, iters and hull come from the programs;
- * normal and depth are drawn from the AOVs. */
+ * normal, depth and reflect are drawn from the AOVs. */
 typedef enum sc_show {
     SC_SHOW_SHADE = 0,         /* shaded colour (default) */
     SC_SHOW_UV,                /* (u, v) as colour */
     SC_SHOW_ITERS,             /* iteration count */
     SC_SHOW_NORMAL,            /* normal as colour */
     SC_SHOW_DEPTH,             /* distance as grey */
-    SC_SHOW_HULL               /* each proxy hull in a colour of its own: the
+    SC_SHOW_HULL,              /* each proxy hull in a colour of its own: the
                                   surface inside it lit, the rest of its face
                                   dim (early termination off; the AOVs hold
                                   only the hits no nearer hull face hides) */
+    SC_SHOW_REFLECT            /* reflection lines: stripes at infinity seen
+                                  in the exact normal, from the AOVs */
 } sc_show;
 
 /* How patches are cut into sub-patches, each bounded by a proxy hull. */

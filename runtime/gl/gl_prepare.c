@@ -337,6 +337,8 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
         if (scene->terrain) {   /* its stand-in surface: the terrain's key */
             scg_key like = r->keys[s];
             sc_tri_key(scene->terrain, &like, &r->keys[s]);
+            if (r->desc.deferred && r->desc.view == SC_SHOW_SHADE)
+                r->keys[s].outputs &= ~SCG_OUTPUT_SHADE;   /* gl_deferred.c shades */
         }
         r->kinds[s] = r->keys[s].kind;
         if (sc_program_for_key(r->programs, &r->keys[s], &r->surface_program[s], err) != SC_OK)
@@ -408,6 +410,8 @@ void sc_renderer_destroy(sc_renderer *r)
         gl->DeleteTextures(1, &r->colour_texture);
     if (r->vertex_array)
         gl->DeleteVertexArrays(1, &r->vertex_array);
+    if (r->deferred_program)
+        gl->DeleteProgram(r->deferred_program);
     if (r->own_programs)
         sc_program_cache_destroy(r->programs);
     sc_hulls_free(&r->hulls);

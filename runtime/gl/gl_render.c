@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl_deferred.h"
 #include "programs.h"
 #include "shader_contract.h"
 #include "tri_prisms.h"
@@ -323,6 +324,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear);
     int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
+    if (status == SC_OK && r->desc.deferred && r->scene->terrain &&
+        r->desc.view == SC_SHOW_SHADE)
+        status = sc_deferred_shade(r, cam->eye, err);
     gl->Disable(GL_FRAMEBUFFER_SRGB);
     gl->Finish();
     if (status != SC_OK)
@@ -529,6 +533,8 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
         sc_image_alloc(img, t->width, t->height, 4);
         if (r->desc.view == SC_SHOW_NORMAL)
             grey_view(a, a->normal, 3, 1, img);
+        else if (r->desc.view == SC_SHOW_REFLECT)
+            sc_view_reflect(a, img);
         else
             grey_view(a, a->t, 1, 0, img);
     }

@@ -56,6 +56,9 @@ typedef struct sc_render_desc {
                                iterations and tolerance chosen from this
                                target (accuracy.h) in place of hulls.tolerance,
                                max_iters and tol_milli; px 0: off */
+    int deferred;           /* terrains: the intersection programs write the
+                               AOVs only, and a full-screen pass shades from
+                               them (gl_deferred.c) */
 } sc_render_desc;
 
 

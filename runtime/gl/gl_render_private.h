@@ -140,6 +140,7 @@ struct sc_renderer {
     int app_nearest_w, app_nearest_h;
     sc_scene *own_scene;     /* a packed renderer's stand-in scene (gl_pack.c):
                                 its surfaces' colours alone */
+    GLuint deferred_program; /* gl_deferred.c's, made on first use */
 };
 
 /* ---- preparation steps gl_prepare.c and gl_pack.c share ---- */

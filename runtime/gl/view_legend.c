@@ -158,6 +158,9 @@ void sc_view_finish(sc_show view, const sc_aov *aov, int max_iters, sc_image *im
         text(img, x + 7, y, "+Z");
         break;
     }
+    case SC_SHOW_REFLECT:
+        text(img, x, y, "REFLECTION LINES");
+        break;
     default:
         text(img, x, y, view == SC_SHOW_HULL ? "HULLS: BRIGHT = HIT, DIM = MISS" : "");
         break;

@@ -18,4 +18,9 @@ enum { SC_VIEW_BACKGROUND = 51 };
  * view). max_iters scales the iteration view. */
 void sc_view_finish(sc_show view, const sc_aov *aov, int max_iters, sc_image *img);
 
+/* The reflection-line view: the view direction mirrored in each pixel's
+ * normal looks up black and white stripes at infinity (view_reflect.c).
+ * img is RGBA of the AOVs' size. */
+void sc_view_reflect(const sc_aov *aov, sc_image *img);
+
 #endif

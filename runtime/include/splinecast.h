@@ -478,6 +478,10 @@ typedef struct sc_renderer_desc {
     double accuracy_px;
     double accuracy_normal_deg;
     const struct sc_camera_desc *accuracy_view;
+    /* Terrains: 1 shades in a full-screen pass after the intersection, from
+     * the AOVs and the patches' exact normals (deferred shading, seed 004);
+     * the intersection programs then write the AOVs only. Shaded view. */
+    int deferred;
 } sc_renderer_desc;
 
 /* Writes what a renderer made with desc would upload for the scene —

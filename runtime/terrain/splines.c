@@ -116,9 +116,9 @@ static void build_c2(const sc_heights *h, sc_tri_mesh *m)
  * Data at the cubic domain points (3 samples per square side). Per vertex
  * V: the value (interpolated) and a fourth-order central difference
  * gradient give the v- and u-coefficients (all on one plane, so the C1
- * conditions at V hold). Per triangle T: phi_T, a symmetric mask of its 10
- * samples; each edge's e-coefficient is phi_T + phi_T' of its two
- * triangles, which makes the alternating sum of the six e-coefficients
+ * conditions at V hold). Per triangle T: phi_T, a mask of its 10 samples
+ * (symmetric about the perpendicular bisector of its diagonal); each edge's
+ * e-coefficient is phi_T + phi_T' of its two triangles, which makes the alternating sum of the six e-coefficients
  * around every vertex vanish, the condition for the z-coefficients around
  * V to satisfy the C1 conditions z_T + z_T' = u + e across each edge. Of
  * that one-parameter family of z, the one nearest (least squares) to the
@@ -148,15 +148,24 @@ static void c1_triangle(const sc_heights *h, const double *inv3, int i, int j, i
     double val[10];
     domain_values(h, 3, i, j, up, val);
     matvec(10, inv3, val, t->cubic);
-    /* Vertices -23, edge points 17, centroid 37, over 140 (docs/splines.md). */
-    double s = 37 * val[sc_tri_index(3, 1, 1)];
+    /* Over 160 (docs/splines.md): by the right-angle corner r of the
+     * triangle (v1 of a lower, v2 of an upper one), 2 at r and 24 at the
+     * two other vertices, -45 at the points of the diagonal edge, on the
+     * legs -23 next to r and -67 next to the other vertex, 300 at the
+     * centroid. Exact for cubics; of that family, the symmetric mask
+     * nearest the least-squares optimum on quartics. */
+    int r = up ? 2 : 1;
+    double s = 0;
     for (int a = 0; a <= 3; a++)
         for (int b = 0; a + b <= 3; b++) {
-            int c = 3 - a - b;
-            if (a == 3 || b == 3 || c == 3) s -= 23 * val[sc_tri_index(3, a, b)];
-            else if (a == 0 || b == 0 || c == 0) s += 17 * val[sc_tri_index(3, a, b)];
+            int e[3] = {a, b, 3 - a - b}, w;
+            if (a == 3 || b == 3 || e[2] == 3) w = e[r] == 3 ? 2 : 24;
+            else if (e[r] == 0) w = -45;
+            else if (a == 0 || b == 0 || e[2] == 0) w = e[r] == 2 ? -23 : -67;
+            else w = 300;
+            s += w * val[sc_tri_index(3, a, b)];
         }
-    t->phi = s / 140;
+    t->phi = s / 160;
 }
 
 /* The quartic coefficient with exponents e of the degree-raised cubic. */
