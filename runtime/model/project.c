@@ -353,8 +353,11 @@ static int closed_curve(const sc_curve *c, double tol)
 /* A loop runs along a closed surface's seam twice (a sphere bounded by
  * its seam edge, there and back): the two runs lie on the two sides, one
  * period apart, or the loop would enclose nothing. A curve whose samples
- * all lie on a seam already used by an earlier curve of the loop is moved
- * to the other side. */
+ * all lie on a stretch of seam already used by an earlier curve of the
+ * loop is moved to the other side. Runs along different stretches of the
+ * seam line (a face crossing the seam, touching it above and below) are
+ * not the same edge and stay where they are. Each remembered run: the
+ * direction, the seam's value, the range of the other parameter. */
 static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
 {
     for (int k = 0; k < 2; k++) {
@@ -365,13 +368,21 @@ static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
         if (fabs(x - (a + m * period)) > eps)
             continue;
         int along = 1;
-        for (int i = 1; i < l->n && along; i++)
+        double lo = l->s[0].uv[1 - k], hi = lo;
+        for (int i = 1; i < l->n && along; i++) {
             along = fabs(l->s[i].uv[k] - x) <= eps;
+            lo = fmin(lo, l->s[i].uv[1 - k]);
+            hi = fmax(hi, l->s[i].uv[1 - k]);
+        }
         if (!along)
             continue;
+        double span = pj->dom[3 - 2 * k] - pj->dom[2 - 2 * k], overlap = 1e-6 * span;
         int seen = 0;
-        for (int i = 0; i < *nseams; i++)
-            seen |= seams[2 * i] == k && fabs(seams[2 * i + 1] - x) <= eps;
+        for (int i = 0; i < *nseams; i++) {
+            const double *r = seams + 4 * i;
+            seen |= r[0] == k && fabs(r[1] - x) <= eps &&
+                    fmin(hi, r[3]) - fmax(lo, r[2]) > overlap;
+        }
         if (seen) {
             double shift = x - a < 0.5 * period ? period : -period;
             for (int i = 0; i < l->n; i++)
@@ -379,8 +390,11 @@ static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
             x += shift;
         }
         if (*nseams < MAX_SEAMS) {
-            seams[2 * *nseams] = k;
-            seams[2 * *nseams + 1] = x;
+            double *r = seams + 4 * *nseams;
+            r[0] = k;
+            r[1] = x;
+            r[2] = lo;
+            r[3] = hi;
             ++*nseams;
         }
     }
@@ -397,7 +411,7 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
     *out = sc_alloc((size_t)2 * n + 1, sizeof(sc_curve));
     *nout = 0;
     *dev = 0;
-    double prev[2] = {0, 0}, first[2] = {0, 0}, seams[2 * MAX_SEAMS];
+    double prev[2] = {0, 0}, first[2] = {0, 0}, seams[4 * MAX_SEAMS];
     int status = SC_OK, nseams = 0;
     for (int i = 0; i < n && status == SC_OK; i++) {
         const sc_curve *c = &curves[i];
