@@ -304,3 +304,27 @@ glu-tessellate: $(BUILD)/glu_tessellate
 $(BUILD)/glu_tessellate: examples/glu_tessellate.c
 	@mkdir -p $(BUILD)
 	$(CC) $(OPT) -std=c11 -Wall -Wextra -D_DEFAULT_SOURCE -o $@ $< -lGLU -lm
+
+# The real-file survey (docs/step.md, docs/iges.md): Open CASCADE's sample
+# shapes written as STEP and IGES by tests/survey/occt_convert.cpp (a tool,
+# not part of the library; built only with Open CASCADE), then `splinecast
+# info` on them and on the shared files, 60 s cap each. SURVEY_RENDER=K
+# also renders every K-th file against the reference at 256x256.
+OCC_SHAPES ?= /usr/share/opencascade/data/occ
+SURVEY_DIR  = $(BUILD)/survey
+SURVEY_DATA ?= $(SC_DATA_DIR) /usr/share/opencascade/data/iges /usr/share/opencascade/data/step
+SC_DATA_DIR ?= ../shared/data
+.PHONY: survey
+ifeq ($(HAVE_OCCT),1)
+survey: $(CLI) $(BUILD)/occt_convert
+	@mkdir -p $(SURVEY_DIR)
+	@for f in $(OCC_SHAPES)/*.brep $(OCC_SHAPES)/*.rle; do \
+	    [ -f "$$f" ] && $(BUILD)/occt_convert "$$f" $(SURVEY_DIR) > /dev/null; done; true
+	tests/survey/survey.sh $(CLI) $(SURVEY_DIR) $(wildcard $(SURVEY_DATA))
+$(BUILD)/occt_convert: tests/survey/occt_convert.cpp
+	@mkdir -p $(BUILD)
+	$(CXX) $(OPT) -std=c++17 -Wall -Wextra -isystem $(OCCT_INC) -o $@ $< $(OCCT_LIBS)
+else
+survey:
+	@echo "survey: needs Open CASCADE (make deps) to write its STEP and IGES files" >&2; exit 1
+endif

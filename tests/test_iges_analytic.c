@@ -577,3 +577,53 @@ TEST(iges_offset_surface_fitted)
     CHECK(worst_over(f, 40, off_quadric, &sphere) <= s.offset_dev * 1.5);
     sc_scene_free(&s);
 }
+
+TEST(iges_sphere_bounded_by_seam_projected)
+{
+    /* A B-rep face on a 196 sphere of radius 2 bounded by its seam alone:
+     * one edge, a rational 126 half circle from pole to pole in the
+     * x–z plane, used twice (508, both orientations), model space only.
+     * Each run of the seam starts or ends at a pole, where Newton cannot
+     * tell the longitude; the projection takes the one the edge has just
+     * off the pole, puts the two runs on the two sides of the seam and
+     * joins them along the poles: the whole sphere is kept, no loop
+     * dropped. */
+    spec e[] = {
+        {116, "116,0.,0.,0.,0;", 0, 0, NULL},                                  /* D 1 */
+        {196, "196,1,2.;", 0, 0, NULL},                                        /* D 3 */
+        {126, "126,4,2,1,0,0,0,0.,0.,0.,.5,.5,1.,1.,1.,"
+              "1.,.7071067811865476,1.,.7071067811865476,1.,"
+              "0.,0.,2.,2.,0.,2.,2.,0.,0.,2.,0.,-2.,0.,0.,-2.,0.,1.,0.,1.,0.;",
+         0, 0, NULL},                                                          /* D 5 */
+        {504, "504,1,5,0,0,0,0;", 0, 0, NULL},                                 /* D 7 */
+        {508, "508,2,0,7,1,1,0,0,7,1,0,0;", 0, 0, NULL},                       /* D 9 */
+        {510, "510,3,1,1,9;", 0, 0, NULL},                                     /* D 11 */
+    };
+    sc_scene s;
+    CHECK_INT(iges_read_specs(e, 6, &s), SC_OK);
+    CHECK_INT(s.nsurfaces, 1);
+    CHECK_INT(s.projected_loops, 1);
+    CHECK_INT(s.dropped_loops, 0);
+    CHECK(s.projection_dev < 1e-5);
+    const sc_surface *f = &s.surfaces[0];
+    CHECK_INT(f->nloops, 1);
+    /* Every point of the loop lies on the seam (x >= 0, y = 0) or at a
+     * pole. */
+    for (int i = 0; i < f->loops[0].ncurves; i++)
+        for (int k = 0; k <= 50; k++) {
+            double p[3];
+            trim_point(f, &f->loops[0].curves[i], k / 50.0, p);
+            CHECK(fabs(p[1]) < 1e-5 && p[0] > -1e-5);
+        }
+    sc_trim *trim = NULL;
+    sc_error err;
+    CHECK_INT(sc_trim_prepare(f, &trim, &err), SC_OK);
+    double u0, u1, v0, v1;
+    sc_surface_domain(f, &u0, &u1, &v0, &v1);
+    for (int j = 0; j < 20; j++)
+        for (int i = 0; i < 20; i++)
+            CHECK_INT(sc_trim_inside(trim, u0 + (u1 - u0) * (i + 0.5) / 20,
+                                     v0 + (v1 - v0) * (j + 0.5) / 20), 1);
+    sc_trim_free(trim);
+    sc_scene_free(&s);
+}

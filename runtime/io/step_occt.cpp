@@ -398,14 +398,22 @@ bool convert_face(const placed_face &pf, int index, sc_scene *scene, sc_budget *
                   const char *name, int line, sc_error *err, std::string &why,
                   bool *over_budget)
 {
-    BRepBuilderAPI_NurbsConvert nc(pf.face, Standard_True);
-    if (!nc.IsDone()) {
-        why = "conversion to NURBS failed";
-        return false;
-    }
-    TopoDS_Face f = TopoDS::Face(nc.Shape());
+    /* A face already on a B-spline surface keeps it and its p-curves: the
+     * conversion would change nothing, but on a surface with a pole it
+     * re-projects every p-curve (ProjLib_ComputeApproxOnPolarSurface), up
+     * to seconds per face. */
+    TopoDS_Face f = pf.face;
     TopLoc_Location loc;
     Handle(Geom_Surface) gs = BRep_Tool::Surface(f, loc);
+    if (Handle(Geom_BSplineSurface)::DownCast(gs).IsNull()) {
+        BRepBuilderAPI_NurbsConvert nc(pf.face, Standard_True);
+        if (!nc.IsDone()) {
+            why = "conversion to NURBS failed";
+            return false;
+        }
+        f = TopoDS::Face(nc.Shape());
+        gs = BRep_Tool::Surface(f, loc);
+    }
     Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(gs);
     if (bs.IsNull() && !gs.IsNull()) {
         double u0, u1, v0, v1;

@@ -264,6 +264,58 @@ static void line2(const double a[2], const double b[2], sc_curve *out)
     memcpy(out->cp, cp, sizeof cp);
 }
 
+/* Whether the surface collapses along direction k at uv: a pole, where
+ * the whole line of uv[k] values is one point. */
+static int collapsed(const proj *pj, const double uv[2], int k)
+{
+    double p[3], q[3], w[2] = {uv[0], uv[1]};
+    eval(pj, uv, p, NULL, NULL);
+    for (int j = 1; j <= 3; j += 2) {
+        w[k] = pj->dom[2 * k] + (pj->dom[2 * k + 1] - pj->dom[2 * k]) * 0.25 * j;
+        eval(pj, w, q, NULL, NULL);
+        if (dist3(p, q) > pj->tol)
+            return 0;
+    }
+    return 1;
+}
+
+/* A curve that starts or ends at a pole has there any value of the
+ * collapsed parameter: Newton keeps its guess (the previous curve's, or
+ * the grid's), and the curve's first piece would cross the domain
+ * diagonally to where the curve leaves the pole. The end takes the value
+ * the curve has just off the pole (at t_in), so that a meridian stays one
+ * line (on its seam, where it is one) and the move along the pole becomes
+ * a segment of its own between curves. */
+static void off_pole(proj *pj, const sc_curve *c, sample *s, double t_in)
+{
+    for (int k = 0; k < 2; k++) {
+        if (!collapsed(pj, s->uv, k))
+            continue;
+        /* From the pole itself Newton may not move (the collapsed value
+         * decides which way is off the pole, and the domain's end stops
+         * it): start at several values. */
+        double x[3], best = INFINITY, at = s->uv[k];
+        sc_curve_eval(c, t_in, x, NULL);
+        for (int j = 0; j < 8; j++) {
+            double uv[2] = {s->uv[0], s->uv[1]};
+            uv[k] = pj->dom[2 * k] + (pj->dom[2 * k + 1] - pj->dom[2 * k]) * (j + 0.5) / 8;
+            double d = newton(pj, x, uv);
+            if (d < best && !collapsed(pj, uv, k)) {
+                best = d;
+                at = uv[k];
+            }
+        }
+        if (best <= pj->tol) {
+            /* the period nearest the value it had */
+            if (pj->closed[k]) {
+                double period = pj->dom[2 * k + 1] - pj->dom[2 * k];
+                at += period * round((s->uv[k] - at) / period);
+            }
+            s->uv[k] = at;
+        }
+    }
+}
+
 /* The samples of curve c from `start` (its first point's parameters) on. */
 static void follow(proj *pj, const sc_curve *c, const double start[2], piece_list *l)
 {
@@ -275,12 +327,16 @@ static void follow(proj *pj, const sc_curve *c, const double start[2], piece_lis
     for (int k = c->degree + 1; k < c->ncp; k++)
         steps += c->knots[k] > c->knots[k - 1];
     steps = steps > 64 ? 64 : steps;
+    const double in = 1e-3 * (t1 - t0);
     sample a;
     sample_at(pj, c, t0, start, &a);
+    off_pole(pj, c, &a, t0 + in);
     push_sample(l, &a);
     for (int k = 1; k <= steps; k++) {
         sample b, last = l->s[l->n - 1];
         sample_at(pj, c, t0 + (t1 - t0) * k / steps, last.uv, &b);
+        if (k == steps)
+            off_pole(pj, c, &b, t1 - in);
         refine(pj, c, &last, &b, 0, l);
     }
 }
@@ -297,8 +353,11 @@ static int closed_curve(const sc_curve *c, double tol)
 /* A loop runs along a closed surface's seam twice (a sphere bounded by
  * its seam edge, there and back): the two runs lie on the two sides, one
  * period apart, or the loop would enclose nothing. A curve whose samples
- * all lie on a seam already used by an earlier curve of the loop is moved
- * to the other side. */
+ * all lie on a stretch of seam already used by an earlier curve of the
+ * loop is moved to the other side. Runs along different stretches of the
+ * seam line (a face crossing the seam, touching it above and below) are
+ * not the same edge and stay where they are. Each remembered run: the
+ * direction, the seam's value, the range of the other parameter. */
 static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
 {
     for (int k = 0; k < 2; k++) {
@@ -309,13 +368,21 @@ static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
         if (fabs(x - (a + m * period)) > eps)
             continue;
         int along = 1;
-        for (int i = 1; i < l->n && along; i++)
+        double lo = l->s[0].uv[1 - k], hi = lo;
+        for (int i = 1; i < l->n && along; i++) {
             along = fabs(l->s[i].uv[k] - x) <= eps;
+            lo = fmin(lo, l->s[i].uv[1 - k]);
+            hi = fmax(hi, l->s[i].uv[1 - k]);
+        }
         if (!along)
             continue;
+        double span = pj->dom[3 - 2 * k] - pj->dom[2 - 2 * k], overlap = 1e-6 * span;
         int seen = 0;
-        for (int i = 0; i < *nseams; i++)
-            seen |= seams[2 * i] == k && fabs(seams[2 * i + 1] - x) <= eps;
+        for (int i = 0; i < *nseams; i++) {
+            const double *r = seams + 4 * i;
+            seen |= r[0] == k && fabs(r[1] - x) <= eps &&
+                    fmin(hi, r[3]) - fmax(lo, r[2]) > overlap;
+        }
         if (seen) {
             double shift = x - a < 0.5 * period ? period : -period;
             for (int i = 0; i < l->n; i++)
@@ -323,8 +390,11 @@ static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
             x += shift;
         }
         if (*nseams < MAX_SEAMS) {
-            seams[2 * *nseams] = k;
-            seams[2 * *nseams + 1] = x;
+            double *r = seams + 4 * *nseams;
+            r[0] = k;
+            r[1] = x;
+            r[2] = lo;
+            r[3] = hi;
             ++*nseams;
         }
     }
@@ -341,7 +411,7 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
     *out = sc_alloc((size_t)2 * n + 1, sizeof(sc_curve));
     *nout = 0;
     *dev = 0;
-    double prev[2] = {0, 0}, first[2] = {0, 0}, seams[2 * MAX_SEAMS];
+    double prev[2] = {0, 0}, first[2] = {0, 0}, seams[4 * MAX_SEAMS];
     int status = SC_OK, nseams = 0;
     for (int i = 0; i < n && status == SC_OK; i++) {
         const sc_curve *c = &curves[i];
@@ -379,7 +449,7 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
          * ended: the same point, made exactly so. */
         if (i > 0 && hypot(a[0] - prev[0], a[1] - prev[1]) > 1e-7 * size)
             line2(prev, a, &(*out)[(*nout)++]);
-        else
+        else if (i > 0)
             memcpy(l.s[0].uv, prev, sizeof prev);
         if (i == n - 1 && hypot(first[0] - l.s[l.n - 1].uv[0], first[1] - l.s[l.n - 1].uv[1]) <=
                               1e-7 * size)
