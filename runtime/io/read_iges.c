@@ -735,5 +735,5 @@ int sc_read_iges(const char *text, size_t size, const char *name, sc_scene *scen
     free(r.parsed);
     free(r.rec);
     free(r.ent);
-    return sc_finish_read(status, name, scene);
+    return sc_finish_read(status, name, scene, err);
 }

@@ -9,13 +9,32 @@
 
 void sc_scene_init(sc_scene *scene) { memset(scene, 0, sizeof *scene); }
 
-void sc_curve_alloc(sc_curve *c, int dim, int degree, int ncp)
+int sc_curve_try_alloc(sc_curve *c, int dim, int degree, int ncp)
 {
     c->dim = dim;
     c->degree = degree;
     c->ncp = ncp;
-    c->knots = sc_alloc((size_t)(ncp + degree + 1), sizeof(double));
-    c->cp = sc_alloc((size_t)ncp * (size_t)(dim + 1), sizeof(double));
+    c->knots = sc_try_alloc((size_t)(ncp + degree + 1), sizeof(double));
+    c->cp = c->knots ? sc_try_alloc((size_t)ncp * (size_t)(dim + 1), sizeof(double)) : NULL;
+    if (!c->cp) {
+        sc_curve_free(c);
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
+
+/* What the aborting forms say before aborting (sc_base.h: sizes that are
+ * not from a file). */
+static void out_of_memory(const char *what)
+{
+    fprintf(stderr, "splinecast: out of memory for %s\n", what);
+    abort();
+}
+
+void sc_curve_alloc(sc_curve *c, int dim, int degree, int ncp)
+{
+    if (sc_curve_try_alloc(c, dim, degree, ncp))
+        out_of_memory("a curve");
 }
 
 void sc_curve_free(sc_curve *c)
@@ -34,15 +53,31 @@ void sc_curve_copy(sc_curve *dst, const sc_curve *src)
 
 static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
-void sc_surface_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
+int sc_surface_try_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
 {
     s->deg_u = deg_u;
     s->deg_v = deg_v;
     s->nu = nu;
     s->nv = nv;
-    s->knots_u = sc_alloc((size_t)(nu + deg_u + 1), sizeof(double));
-    s->knots_v = sc_alloc((size_t)(nv + deg_v + 1), sizeof(double));
-    s->cp = sc_alloc((size_t)nu * (size_t)nv * 4, sizeof(double));
+    s->knots_u = sc_try_alloc((size_t)(nu + deg_u + 1), sizeof(double));
+    s->knots_v = sc_try_alloc((size_t)(nv + deg_v + 1), sizeof(double));
+    s->cp = sc_try_alloc((size_t)nu * (size_t)nv * 4, sizeof(double));
+    if (!s->knots_u || !s->knots_v || !s->cp) {
+        /* The surface keeps its loops, name and transform. */
+        free(s->knots_u);
+        free(s->knots_v);
+        free(s->cp);
+        s->knots_u = s->knots_v = s->cp = NULL;
+        s->nu = s->nv = 0;
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
+
+void sc_surface_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
+{
+    if (sc_surface_try_alloc(s, deg_u, deg_v, nu, nv))
+        out_of_memory("a surface");
 }
 
 static void free_loops(sc_surface *s)
@@ -95,7 +130,19 @@ void sc_scene_free(sc_scene *scene)
 
 sc_surface *sc_scene_add_surface(sc_scene *scene)
 {
-    scene->surfaces = sc_realloc(scene->surfaces, (size_t)scene->nsurfaces + 1, sizeof(sc_surface));
+    sc_surface *s = sc_scene_try_add_surface(scene);
+    if (!s)
+        out_of_memory("the scene's surfaces");
+    return s;
+}
+
+sc_surface *sc_scene_try_add_surface(sc_scene *scene)
+{
+    sc_surface *grown = sc_try_realloc(scene->surfaces, (size_t)scene->nsurfaces + 1,
+                                       sizeof(sc_surface));
+    if (!grown)
+        return NULL;
+    scene->surfaces = grown;
     sc_surface *s = &scene->surfaces[scene->nsurfaces];
     memset(s, 0, sizeof *s);
     memcpy(s->xform, identity, sizeof identity);
