@@ -23,18 +23,13 @@ int sc_curve_try_alloc(sc_curve *c, int dim, int degree, int ncp)
     return SC_OK;
 }
 
-/* What the aborting forms say before aborting (sc_base.h: sizes that are
- * not from a file). */
-static void out_of_memory(const char *what)
-{
-    fprintf(stderr, "splinecast: out of memory for %s\n", what);
-    abort();
-}
-
 void sc_curve_alloc(sc_curve *c, int dim, int degree, int ncp)
 {
-    if (sc_curve_try_alloc(c, dim, degree, ncp))
-        out_of_memory("a curve");
+    c->dim = dim;
+    c->degree = degree;
+    c->ncp = ncp;
+    c->knots = sc_alloc((size_t)(ncp + degree + 1), sizeof(double));
+    c->cp = sc_alloc((size_t)ncp * (size_t)(dim + 1), sizeof(double));
 }
 
 void sc_curve_free(sc_curve *c)
@@ -76,8 +71,13 @@ int sc_surface_try_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
 
 void sc_surface_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
 {
-    if (sc_surface_try_alloc(s, deg_u, deg_v, nu, nv))
-        out_of_memory("a surface");
+    s->deg_u = deg_u;
+    s->deg_v = deg_v;
+    s->nu = nu;
+    s->nv = nv;
+    s->knots_u = sc_alloc((size_t)(nu + deg_u + 1), sizeof(double));
+    s->knots_v = sc_alloc((size_t)(nv + deg_v + 1), sizeof(double));
+    s->cp = sc_alloc((size_t)nu * (size_t)nv * 4, sizeof(double));
 }
 
 static void free_loops(sc_surface *s)
@@ -128,18 +128,12 @@ void sc_scene_free(sc_scene *scene)
     sc_scene_init(scene);
 }
 
-sc_surface *sc_scene_add_surface(sc_scene *scene)
+/* The aborting and the checked form differ only in the allocation. */
+static sc_surface *add_surface(sc_scene *scene, int checked)
 {
-    sc_surface *s = sc_scene_try_add_surface(scene);
-    if (!s)
-        out_of_memory("the scene's surfaces");
-    return s;
-}
-
-sc_surface *sc_scene_try_add_surface(sc_scene *scene)
-{
-    sc_surface *grown = sc_try_realloc(scene->surfaces, (size_t)scene->nsurfaces + 1,
-                                       sizeof(sc_surface));
+    size_t n = (size_t)scene->nsurfaces + 1;
+    sc_surface *grown = checked ? sc_try_realloc(scene->surfaces, n, sizeof(sc_surface))
+                                : sc_realloc(scene->surfaces, n, sizeof(sc_surface));
     if (!grown)
         return NULL;
     scene->surfaces = grown;
@@ -153,6 +147,10 @@ sc_surface *sc_scene_try_add_surface(sc_scene *scene)
     scene->nsurfaces++;
     return s;
 }
+
+sc_surface *sc_scene_add_surface(sc_scene *scene) { return add_surface(scene, 0); }
+
+sc_surface *sc_scene_try_add_surface(sc_scene *scene) { return add_surface(scene, 1); }
 
 void sc_scene_skip(sc_scene *scene, const char *type, const char *reason, int count)
 {
