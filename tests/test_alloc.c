@@ -136,6 +136,16 @@ TEST(alloc_inject_obj)
     }
 }
 
+TEST(alloc_inject_iges)
+{
+    /* Real parts: trimmed surfaces (144), B-spline surfaces and curves. */
+    static const char *const files[] = {"iges/OCC131-2.igs", "iges/bug24012_face.igs"};
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        REQUIRE_DATA(files[i]);
+        CHECK(drive_failures(test_data(files[i]), read_scene_once, 100000) > 0);
+    }
+}
+
 TEST(alloc_inject_images)
 {
     /* An AOV file and a PNG as the renderer writes them. */

@@ -298,7 +298,10 @@ static int finish_surface(reader *r, int owner, int base, sc_surface *s)
         snprintf(s->name, sizeof s->name, "%s.%d", r->ent[named].label, r->ent[named].subscript);
     else
         snprintf(s->name, sizeof s->name, "%s", r->ent[named].label);
-    sc_surface *dst = sc_scene_add_surface(r->scene);
+    sc_surface *dst = sc_scene_try_add_surface(r->scene);
+    if (!dst)
+        return iges_fail_oom(r, owner, ((size_t)r->scene->nsurfaces + 1) * sizeof(sc_surface),
+                             "the scene's surfaces");
     float default_color[3];
     memcpy(default_color, dst->color, sizeof default_color);
     *dst = *s;

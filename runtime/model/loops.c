@@ -570,9 +570,9 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
     int a, b;
     double at[2];
     int crossing = pl.failed ? CROSSING_NO_MEMORY : find_crossing(&pl, size, &a, &b, at);
-    if (crossing == CROSSING_NO_MEMORY) {
+    int no_memory = crossing == CROSSING_NO_MEMORY;
+    if (no_memory) {
         *site->oom = pl.failed ? pl.failed : (size_t)pl.n * 2 * sizeof(int);
-        crossing = LOOP_NO_MEMORY;
     } else if (crossing == CROSSING_UNKNOWN) {
         sc_log(SC_LOG_WARN, LOOP_FMT " dropped: %d of its segments overlap so much that "
                "checking it for self-crossings would take too long (collinear repeated "
@@ -587,7 +587,7 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
     free(pl.curve);
     free(pl.arc);
     free(pl.junctions);
-    return crossing == LOOP_NO_MEMORY ? LOOP_NO_MEMORY : !crossing;
+    return no_memory ? LOOP_NO_MEMORY : !crossing;
 }
 
 static void free_loop(sc_loop *loop)
