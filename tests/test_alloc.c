@@ -17,6 +17,7 @@
 #include "image.h"
 #include "io.h"
 #include "pack_file.h"
+#include "splinecast.h"
 #include "test.h"
 
 /* One read of a real input; returns its status and checks that a failed
@@ -32,7 +33,10 @@ static int drive_failures(const char *path, read_once_fn read, int max_runs)
     int empty = 1;
     sc_alloc_fail_at(0);
     memset(&err, 0, sizeof err);
-    if (read(path, &err, &empty) != SC_OK) {
+    sc_set_logger(test_gather_warnings, &(test_warnings){0});
+    int first = read(path, &err, &empty);
+    sc_set_logger(NULL, NULL);
+    if (first != SC_OK) {
         char text[1200];
         fprintf(stderr, "  %s does not read: %s\n", path, sc_error_text(&err, text, sizeof text));
         return -1;
@@ -202,6 +206,39 @@ TEST(alloc_inject_pack)
     snprintf(cmd, sizeof cmd, "%s pack teapot -o %s", test_cli, path);
     CHECK_INT(test_run(cmd, NULL, NULL), 0);
     CHECK(drive_failures(path, read_pack_once, 1000) > 0);
+}
+
+/* Through the API: a scene from text (the OBJ reader) and a terrain from a
+ * height file; every failure is an sc_error naming the input, and no
+ * scene handle. */
+static const char *api_text;
+static int make_scene_once(const char *path, sc_error *err, int *left_empty)
+{
+    sc_scene_desc desc = {0};
+    if (api_text) {
+        desc.text = api_text;
+        desc.size = strlen(api_text);
+        desc.name = path;
+    } else {
+        desc.heights = path;
+    }
+    sc_scene_id id = {0};
+    int status = sc_make_scene(&desc, &id, err);
+    *left_empty = id.id == 0;
+    sc_destroy_scene(id);
+    return status;
+}
+
+TEST(alloc_inject_api)
+{
+    char *text = test_read_file(test_root("examples/scenes/trim_nested.obj"));
+    CHECK(text);
+    api_text = text;
+    int failed = drive_failures("trim_nested.obj", make_scene_once, 100000);
+    api_text = NULL;
+    free(text);
+    CHECK(failed > 0);
+    CHECK(drive_failures(test_root("examples/scenes/hills33.pgm"), make_scene_once, 1000) > 0);
 }
 
 /* The command line: SC_ALLOC_FAIL=N fails the Nth try of the process. */
