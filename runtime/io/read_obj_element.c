@@ -183,7 +183,11 @@ static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_re
                          loop->is_hole ? "hole" : "trim", r->name, loop->line, r->err))
         return SC_FAIL;
     /* Ends within the tolerance of the domain's are the domain's. */
-    sc_curve_copy(out, c);
+    if (sc_curve_try_alloc(out, c->dim, c->degree, c->ncp))
+        return sc_fail_oom(r->err, r->name, loop->line, 1, sc_curve_bytes(2, c->degree, c->ncp),
+                           loop->is_hole ? "hole" : "trim");
+    memcpy(out->knots, c->knots, sizeof(double) * (size_t)(c->ncp + c->degree + 1));
+    memcpy(out->cp, c->cp, sizeof(double) * (size_t)c->ncp * (size_t)(c->dim + 1));
     sc_curve_restrict(out, lo > t0 + tol ? lo : t0, hi < t1 - tol ? hi : t1);
     if (ref->t0 > ref->t1)
         sc_curve_reverse(out);
