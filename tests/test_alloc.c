@@ -19,6 +19,7 @@
 #include "pack_file.h"
 #include "splinecast.h"
 #include "test.h"
+#include "trim.h"
 
 /* One read of a real input; returns its status and checks that a failed
  * read leaves nothing behind (it frees what a successful one returns). */
@@ -206,6 +207,38 @@ TEST(alloc_inject_pack)
     snprintf(cmd, sizeof cmd, "%s pack teapot -o %s", test_cli, path);
     CHECK_INT(test_run(cmd, NULL, NULL), 0);
     CHECK(drive_failures(path, read_pack_once, 1000) > 0);
+}
+
+/* The trim pieces a renderer and the reference prepare from a scene's
+ * loops (runtime/model/trim.c): their failure is an error, no leak. */
+TEST(alloc_inject_trim)
+{
+    sc_scene scene;
+    sc_error err;
+    CHECK_INT(sc_read_scene(test_root("examples/scenes/trim_nested.obj"), &scene, &err), SC_OK);
+    int failed = 0;
+    for (int i = 0; i < scene.nsurfaces; i++) {
+        if (!scene.surfaces[i].nloops)
+            continue;
+        for (long n = 1;; n++) {
+            sc_trim *trim = NULL;
+            memset(&err, 0, sizeof err);
+            sc_alloc_fail_at(n);
+            int status = sc_trim_prepare(&scene.surfaces[i], &trim, &err);
+            long made = sc_alloc_fail_at(0);
+            sc_trim_free(trim);
+            if (made < n) {
+                CHECK_INT(status, SC_OK);
+                break;
+            }
+            CHECK_INT(status, SC_FAIL);
+            CHECK(trim == NULL);
+            CHECK_CONTAINS(err.message, "out of memory: ");
+            failed++;
+        }
+    }
+    sc_scene_free(&scene);
+    CHECK(failed > 2);
 }
 
 /* Through the API: a scene from text (the OBJ reader) and a terrain from a
