@@ -124,13 +124,14 @@ static int try_fails(void)
         if (try_fail_at < 0)
             try_fail_at = 0;
     }
-    return ++try_count == try_fail_at;
+    /* Readers may run on several threads at once (the API is called from
+     * any thread): the counter is atomic. */
+    return __atomic_add_fetch(&try_count, 1, __ATOMIC_RELAXED) == try_fail_at;
 }
 
 long sc_alloc_fail_at(long n)
 {
-    long made = try_count;
-    try_count = 0;
+    long made = __atomic_exchange_n(&try_count, 0, __ATOMIC_RELAXED);
     try_fail_at = n > 0 ? n : 0;
     return made;
 }
