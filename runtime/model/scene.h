@@ -131,7 +131,9 @@ void sc_surface_bake_xform(sc_surface *s);
  * loop with a warning (the surface is kept) and is counted in
  * scene->dropped_loops. Warnings start with scene->source when it is set.
  * Curves outside the domain are not an error (real files have them slightly
- * outside). */
+ * outside). Fails only when memory runs out ("out of memory: N bytes for
+ * validating trim loop L of surface S", the file being scene->source); the
+ * scene can then still be freed. */
 int sc_scene_validate_loops(sc_scene *scene, sc_error *err);
 
 #endif
