@@ -17,6 +17,7 @@
 #include "image.h"
 #include "io.h"
 #include "pack_file.h"
+#include "step.h"
 #include "splinecast.h"
 #include "test.h"
 #include "trim.h"
@@ -149,6 +150,30 @@ TEST(alloc_inject_iges)
         REQUIRE_DATA(files[i]);
         CHECK(drive_failures(test_data(files[i]), read_scene_once, 100000) > 0);
     }
+}
+
+static int scan_step_once(const char *path, sc_error *err, int *left_empty)
+{
+    char *text;
+    size_t size;
+    if (sc_read_file_max(path, (size_t)1 << 30, 1, &text, &size, err))
+        return SC_FAIL;
+    sc_step_scan scan;
+    int status = sc_step_scan_text(text, size, path, &scan, err);
+    free(text);
+    if (status != SC_OK)
+        *left_empty = !scan.ids && !scan.lines;
+    else
+        sc_step_scan_free(&scan);
+    return status;
+}
+
+TEST(alloc_inject_step_scan)
+{
+    /* Our pre-scan of a STEP file (the library's transfer runs in a child
+     * process, whose memory is its own limit: docs/step.md). */
+    REQUIRE_DATA("step/bug3883_xr2-ct-214_bolt.stp");
+    CHECK(drive_failures(test_data("step/bug3883_xr2-ct-214_bolt.stp"), scan_step_once, 1000) > 0);
 }
 
 TEST(alloc_inject_images)
