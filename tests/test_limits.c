@@ -3,7 +3,8 @@
  * used to make the readers work without bound) ending quickly with a clear
  * "file:line: ..." error or a warning. The files are generated here, small,
  * so that the tests stay fast; the timings before and after are in the
- * commit history and docs/limits.md. */
+ * commit history and docs/limits.md. The memory row (allocation failures
+ * as errors, a real `ulimit -v`) is tested in test_alloc.c. */
 #include <fcntl.h>
 #include <stdarg.h>
 #include <stdlib.h>

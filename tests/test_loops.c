@@ -19,7 +19,7 @@ static void validate(sc_scene *scene, test_warnings *cap)
 {
     memset(cap, 0, sizeof *cap);
     sc_set_logger(test_gather_warnings, cap);
-    sc_scene_validate_loops(scene);
+    sc_scene_validate_loops(scene, NULL);
     sc_set_logger(NULL, NULL);
 }
 

@@ -463,7 +463,7 @@ TEST(ref_trimmed_square_coverage)
         sc_scene_init(&scene);
         add_holed_square(&scene, variant % 2 ? M_PI / 4 : 0.0);
         add_floor(&scene, -0.6);
-        sc_scene_validate_loops(&scene);
+        sc_scene_validate_loops(&scene, NULL);
         sc_refcast *rc;
         sc_error err;
         CHECK_INT(sc_refcast_prepare(&scene, &rc, &err), SC_OK);

@@ -145,7 +145,7 @@ TEST(trimgpu_high_degree)
         sc_surface *s = add_patch(&scene, 0, 1, 0, 1);
         add_polygon(s, 0, outer_square, 4);
         add_bezier_hole(s, n);
-        sc_scene_validate_loops(&scene);
+        sc_scene_validate_loops(&scene, NULL);
         CHECK_INT(scene.dropped_loops, 0);
         CHECK_INT(sc_surface_trim_degree(s), n);
         for (int m = 0; m < 3; m++) {

@@ -214,7 +214,7 @@ sc_surface *make_shape(sc_scene *scene, shape which, double u0, double u1, doubl
     default:
         break;
     }
-    sc_scene_validate_loops(scene);
+    sc_scene_validate_loops(scene, NULL);
     return &scene->surfaces[0];
 }
 

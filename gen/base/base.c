@@ -112,6 +112,57 @@ void *sc_realloc(void *ptr, size_t count, size_t size)
     return p;
 }
 
+/* The failure injection of sc_alloc_fail_at: tries made since the counter
+ * was set, and the try that fails (0: none). Read from SC_ALLOC_FAIL once. */
+static long try_count, try_fail_at = -1;
+
+static int try_fails(void)
+{
+    if (try_fail_at < 0) {
+        const char *env = getenv("SC_ALLOC_FAIL");
+        try_fail_at = env ? strtol(env, NULL, 10) : 0;
+        if (try_fail_at < 0)
+            try_fail_at = 0;
+    }
+    /* Readers may run on several threads at once (the API is called from
+     * any thread): the counter is atomic. */
+    return __atomic_add_fetch(&try_count, 1, __ATOMIC_RELAXED) == try_fail_at;
+}
+
+long sc_alloc_fail_at(long n)
+{
+    long made = __atomic_exchange_n(&try_count, 0, __ATOMIC_RELAXED);
+    try_fail_at = n > 0 ? n : 0;
+    return made;
+}
+
+void *sc_try_alloc(size_t count, size_t size)
+{
+    if (count == 0 || size == 0)
+        count = size = 1;
+    if (try_fails() || count > SIZE_MAX / size)
+        return NULL;
+    return calloc(count, size);
+}
+
+void *sc_try_realloc(void *ptr, size_t count, size_t size)
+{
+    if (count == 0 || size == 0)
+        count = size = 1;
+    if (try_fails() || count > SIZE_MAX / size)
+        return NULL;
+    return realloc(ptr, count * size);
+}
+
+int sc_fail_oom(sc_error *err, const char *file, int line, size_t count, size_t size,
+                const char *what)
+{
+    if (size && count > SIZE_MAX / size)
+        return sc_fail(err, file, line, "out of memory: %zu x %zu bytes for %s", count, size,
+                       what);
+    return sc_fail(err, file, line, "out of memory: %zu bytes for %s", count * size, what);
+}
+
 double sc_now(void)
 {
     struct timespec ts;

@@ -31,11 +31,11 @@ int sc_read_file_max(const char *path, size_t max, int regular_only, char **data
                        "docs/limits.md)", max >> 20);
     }
     size_t cap = regular ? (size_t)st.st_size + 2 : (size_t)1 << 16, n = 0;
-    char *buf = malloc(cap);
+    char *buf = sc_try_alloc(cap, 1);
     while (buf && n <= max) {
         if (cap - n < 2) {
             size_t grow = cap < max / 2 ? 2 * cap : max + 2;
-            char *grown = realloc(buf, grow);
+            char *grown = sc_try_realloc(buf, grow, 1);
             if (!grown)
                 free(buf);
             buf = grown;

@@ -34,6 +34,25 @@ void sc_log(sc_log_level level, const char *fmt, ...)
 void *sc_alloc(size_t count, size_t size);          /* zeroed */
 void *sc_realloc(void *ptr, size_t count, size_t size);
 
+/* Allocation that may fail: for every size that comes from the input (a
+ * file, a header, a count of the API's caller), so that memory that is not
+ * there is an error, not an abort. They return NULL on exhaustion or on an
+ * overflowing count (sc_try_realloc leaves `ptr` as it was). sc_alloc and
+ * sc_realloc remain for small fixed sizes (handles, records of a few
+ * hundred bytes), whose failure leaves nothing sensible to report. */
+void *sc_try_alloc(size_t count, size_t size);          /* zeroed */
+void *sc_try_realloc(void *ptr, size_t count, size_t size);
+/* Records "out of memory: N bytes for WHAT" at file:line and returns
+ * SC_FAIL: the error a failed sc_try_alloc becomes. */
+int sc_fail_oom(sc_error *err, const char *file, int line, size_t count, size_t size,
+                const char *what);
+/* For tests: makes the `n`th sc_try_alloc / sc_try_realloc from now fail
+ * (1: the next one; 0: none), so that every failure path can be driven.
+ * Returns how many tries have been made since the last call. The
+ * environment variable SC_ALLOC_FAIL=N does the same from the start of a
+ * process (the command line's tests). */
+long sc_alloc_fail_at(long n);
+
 /* Whole file into memory (NUL-terminated, the NUL not counted in *size),
  * at most `max` bytes, checked as the data arrives (a device or a pipe can
  * be endless); with `regular_only` anything but a regular file is refused

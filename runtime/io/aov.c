@@ -52,12 +52,12 @@ static int aov_try_alloc(sc_aov *aov, const sc_camera *cam, int has_iters)
     aov->camera = *cam;
     aov->has_iters = has_iters;
     size_t n = (size_t)cam->width * (size_t)cam->height;
-    aov->surface = malloc(n * sizeof(int32_t));
-    aov->uv = calloc(n * 2, sizeof(float));
-    aov->t = calloc(n, sizeof(float));
-    aov->point = calloc(n * 3, sizeof(float));
-    aov->normal = calloc(n * 3, sizeof(float));
-    aov->iters = has_iters ? calloc(n, sizeof(float)) : NULL;
+    aov->surface = sc_try_alloc(n, sizeof(int32_t));
+    aov->uv = sc_try_alloc(n * 2, sizeof(float));
+    aov->t = sc_try_alloc(n, sizeof(float));
+    aov->point = sc_try_alloc(n * 3, sizeof(float));
+    aov->normal = sc_try_alloc(n * 3, sizeof(float));
+    aov->iters = has_iters ? sc_try_alloc(n, sizeof(float)) : NULL;
     if (!aov->surface || !aov->uv || !aov->t || !aov->point || !aov->normal ||
         (has_iters && !aov->iters)) {
         sc_aov_free(aov);

@@ -266,7 +266,8 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     if (iges_need(r, p, 6 + nk + 4 * n))
         return SC_FAIL;
     sc_curve *c = iges_list_push(out);
-    sc_curve_alloc(c, list_dim(out), deg, (int)n);
+    if (sc_curve_try_alloc(c, list_dim(out), deg, (int)n))
+        return iges_fail_oom(r, e, sc_curve_bytes(list_dim(out), deg, (int)n), "the curve");
     int wi = c->dim, st = c->dim + 1;
     int at = 7;
     if (iges_read_knots(r, p, at, c->knots, (int)nk, deg, "curve"))

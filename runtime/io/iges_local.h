@@ -100,10 +100,11 @@ typedef struct reader {
 
 extern const double iges_identity[12];
 
-enum { TOK_END, TOK_CUT, TOK_BAD_STRING };
+enum { TOK_END, TOK_CUT, TOK_BAD_STRING, TOK_NO_MEMORY };
 
 int iges_fail_at(reader *r, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 int iges_fail(reader *r, int e, int line, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+int iges_fail_oom(reader *r, int e, size_t bytes, const char *what);
 int iges_gather(const reader *r, int first, int n, int cols, char *buf);
 int iges_tokenize(const char *t, int n, char pd, char rd, params *p, int *at);
 void iges_params_free(params *p);

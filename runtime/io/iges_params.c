@@ -26,6 +26,14 @@ int iges_fail_at(reader *r, int line, const char *fmt, ...)
     return status;
 }
 
+/* A failed sc_try_alloc of `bytes` for entity e (e < 0: for the file). */
+int iges_fail_oom(reader *r, int e, size_t bytes, const char *what)
+{
+    if (e < 0)
+        return sc_fail_oom(r->err, r->name, 0, bytes, 1, what);
+    return iges_fail(r, e, 0, "out of memory: %zu bytes for %s", bytes, what);
+}
+
 /* "entity TYPE (D n): ..." at `line`, or at the entity's directory line. */
 int iges_fail(reader *r, int e, int line, const char *fmt, ...)
 {
@@ -56,17 +64,25 @@ int iges_gather(const reader *r, int first, int n, int cols, char *buf)
 /* ------------------------------------------------------------------ */
 
 
-static void push_token(params *p, token t)
+static int push_token(params *p, token t)
 {
-    if (p->ntok == p->cap)
-        p->tok = sc_realloc(p->tok, (size_t)(p->cap = p->cap ? 2 * p->cap : 64), sizeof(token));
+    if (p->ntok == p->cap) {
+        int cap = p->cap ? 2 * p->cap : 64;
+        token *grown = sc_try_realloc(p->tok, (size_t)cap, sizeof(token));
+        if (!grown)
+            return SC_FAIL;
+        p->tok = grown;
+        p->cap = cap;
+    }
     p->tok[p->ntok++] = t;
+    return SC_OK;
 }
 
 /* Cuts t[0, n) into tokens up to the record delimiter (TOK_END). TOK_CUT:
  * the text ends first, *at = n, or a Hollerith string's count runs past
  * the end, *at = its offset; TOK_BAD_STRING: a Hollerith string is followed
- * by something other than a delimiter, *at = its offset. */
+ * by something other than a delimiter, *at = its offset; TOK_NO_MEMORY: the
+ * tokens do not fit in memory. */
 int iges_tokenize(const char *t, int n, char pd, char rd, params *p, int *at)
 {
     p->ntok = 0;
@@ -112,7 +128,10 @@ int iges_tokenize(const char *t, int n, char pd, char rd, params *p, int *at)
                 end--;
             tk.len = end - tk.start;
         }
-        push_token(p, tk);
+        if (push_token(p, tk)) {
+            *at = pos;
+            return TOK_NO_MEMORY;
+        }
         if (t[pos] == rd)
             return TOK_END;
         pos++;
@@ -247,9 +266,14 @@ static int tokenise_record(reader *r, int e, int pdata, parsed_record *pr)
     int want = nlines < 1 ? 1 : nlines < avail ? nlines : avail;
     want = want < 64 ? want : 64;
     for (;;) {
-        p->text = sc_realloc(p->text, (size_t)want * PARAM_COLS, 1);
+        char *text = sc_try_realloc(p->text, (size_t)want * PARAM_COLS, 1);
+        if (!text)
+            return iges_fail_oom(r, e, (size_t)want * PARAM_COLS, "parameter data");
+        p->text = text;
         pr->n = iges_gather(r, p->first_record, want, PARAM_COLS, p->text);
         pr->status = iges_tokenize(p->text, pr->n, r->pdelim, r->rdelim, p, &pr->at);
+        if (pr->status == TOK_NO_MEMORY)
+            return iges_fail_oom(r, e, (size_t)p->cap * 2 * sizeof(token), "parameters");
         const token *last = pr->status == TOK_END ? &p->tok[p->ntok - 1] : NULL;
         r->tokenised += last ? (size_t)(last->start + last->len) : (size_t)pr->n;
         if (r->tokenised > (size_t)4 * np * PARAM_COLS + ((size_t)1 << 20))
@@ -275,8 +299,8 @@ int iges_params(reader *r, int e, params *p)
     if (en->pdata < 1 || en->pdata > np)
         return iges_fail(r, e, 0, "parameter data pointer %d is outside the P section (1..%d)",
                            en->pdata, np);
-    if (!r->parsed)
-        r->parsed = sc_alloc((size_t)np, sizeof *r->parsed);
+    if (!r->parsed && !(r->parsed = sc_try_alloc((size_t)np, sizeof *r->parsed)))
+        return iges_fail_oom(r, e, (size_t)np * sizeof *r->parsed, "the parameter records");
     parsed_record *pr = &r->parsed[en->pdata - 1];
     if (!pr->done && tokenise_record(r, e, en->pdata, pr))
         return SC_FAIL;

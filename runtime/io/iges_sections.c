@@ -47,8 +47,15 @@ static int add_record(reader *r, int *cap, const char *s, int n, int line, int *
         r->sec_first[sec] = r->nrec;
     *last_section = sec;
     r->sec_count[sec]++;
-    if (r->nrec == *cap)
-        r->rec = sc_realloc(r->rec, (size_t)(*cap = *cap ? 2 * *cap : 1024), sizeof(record));
+    if (r->nrec == *cap) {
+        int grow = *cap ? 2 * *cap : 1024;
+        record *grown = sc_try_realloc(r->rec, (size_t)grow, sizeof(record));
+        if (!grown)
+            return sc_fail_oom(r->err, r->name, line, (size_t)grow, sizeof(record),
+                               "the records");
+        r->rec = grown;
+        *cap = grow;
+    }
     r->rec[r->nrec++] = (record){s, n, line};
     return SC_OK;
 }
@@ -110,7 +117,9 @@ int iges_read_global(reader *r)
     if (ng == 0)
         return SC_OK;
     int first = r->sec_first[SEC_G], line = r->rec[first].line;
-    char *g = sc_alloc((size_t)ng * GLOBAL_COLS, 1);
+    char *g = sc_try_alloc((size_t)ng * GLOBAL_COLS, 1);
+    if (!g)
+        return sc_fail_oom(r->err, r->name, line, (size_t)ng, GLOBAL_COLS, "the global section");
     int n = iges_gather(r, first, ng, GLOBAL_COLS, g), pos = 0;
     while (pos < n && g[pos] == ' ')
         pos++;
@@ -137,6 +146,13 @@ int iges_read_global(reader *r)
     params gp = {0};
     int at, status = iges_tokenize(g, n, r->pdelim, r->rdelim, &gp, &at);
     int bad_line = r->rec[first + (at < n ? at : n - 1) / GLOBAL_COLS].line;
+    if (status == TOK_NO_MEMORY) {
+        size_t want = (size_t)gp.cap * 2;
+        iges_params_free(&gp);
+        free(g);
+        return sc_fail_oom(r->err, r->name, bad_line, want, sizeof(token),
+                           "the global section's parameters");
+    }
     if (status == TOK_BAD_STRING || (status == TOK_CUT && at < n))
         sc_log(SC_LOG_WARN, "%s:%d: global section: a Hollerith string does not fit its count; "
                "the rest of the global section is ignored", r->name, bad_line);
@@ -182,7 +198,9 @@ static int dir_int(reader *r, const record *rc, int k, int de, const char *what,
 int iges_read_directory(reader *r)
 {
     r->nent = r->sec_count[SEC_D] / 2;
-    r->ent = sc_alloc((size_t)r->nent, sizeof(entity));
+    if (!(r->ent = sc_try_alloc((size_t)r->nent, sizeof(entity))))
+        return sc_fail_oom(r->err, r->name, 0, (size_t)r->nent, sizeof(entity),
+                           "the directory entries");
     for (int e = 0; e < r->nent; e++) {
         const record *a = &r->rec[r->sec_first[SEC_D] + 2 * e], *b = a + 1;
         entity *en = &r->ent[e];

@@ -43,7 +43,8 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
         sc_budget_charge(&r->budget, sc_surface_bytes(m1, m2, (int)nu, (int)nv), "surface",
                          r->name, iges_line(r, p, 1), r->err))
         return SC_FAIL;
-    sc_surface_alloc(s, m1, m2, (int)nu, (int)nv);
+    if (sc_surface_try_alloc(s, m1, m2, (int)nu, (int)nv))
+        return iges_fail_oom(r, e, sc_surface_bytes(m1, m2, (int)nu, (int)nv), "the surface");
     int at = 10;
     if (iges_read_knots(r, p, at, s->knots_u, (int)nku, m1, "u"))
         return SC_FAIL;
@@ -333,7 +334,9 @@ static int read_114(reader *r, const params *p, iges_surface *sf)
         sc_budget_charge(&r->budget, sc_surface_bytes(3, 3, 3 * m + 1, 3 * n + 1), "surface",
                          r->name, iges_line(r, p, 3), r->err))
         return SC_FAIL;
-    double *tu = sc_alloc((size_t)m + n + 2, sizeof(double)), *tv = tu + m + 1;
+    double *tu = sc_try_alloc((size_t)m + n + 2, sizeof(double)), *tv = tu + m + 1;
+    if (!tu)
+        return iges_fail_oom(r, e, ((size_t)m + n + 2) * sizeof(double), "breakpoints");
     int status = SC_OK;
     for (int i = 0; i < m + n + 2 && status == SC_OK; i++)
         status = iges_real(r, p, 5 + i, &tu[i]);
@@ -348,7 +351,10 @@ static int read_114(reader *r, const params *p, iges_surface *sf)
         return SC_FAIL;
     }
     sc_surface *s = &sf->nurbs;
-    sc_surface_alloc(s, 3, 3, 3 * m + 1, 3 * n + 1);
+    if (sc_surface_try_alloc(s, 3, 3, 3 * m + 1, 3 * n + 1)) {
+        free(tu);
+        return iges_fail_oom(r, e, sc_surface_bytes(3, 3, 3 * m + 1, 3 * n + 1), "the surface");
+    }
     for (int k = 0; k < 4; k++) {
         s->knots_u[k] = tu[0];
         s->knots_u[3 * m + 1 + k] = tu[m];

@@ -117,12 +117,14 @@ int sc_png_read(const char *path, sc_image *img, sc_error *err)
     /* The size comes from a 33-byte header: checked, and memory that is not
      * there is an error, not an abort. */
     if ((long long)width * height > SC_MAX_IMAGE_PIXELS ||
-        !(pixels = malloc((size_t)width * (size_t)height * (size_t)channels))) {
+        !(pixels = sc_try_alloc((size_t)width * (size_t)height, (size_t)channels))) {
         png_destroy_read_struct(&png, &info, NULL);
         fclose(f);
-        return sc_fail(err, path, 0, "image of %d x %d pixels: more than %s", width, height,
-                       (long long)width * height > SC_MAX_IMAGE_PIXELS
-                           ? "the limit (docs/limits.md)" : "the memory available");
+        if ((long long)width * height > SC_MAX_IMAGE_PIXELS)
+            return sc_fail(err, path, 0, "image of %d x %d pixels: more than the limit "
+                           "(docs/limits.md)", width, height);
+        return sc_fail_oom(err, path, 0, (size_t)width * (size_t)height, (size_t)channels,
+                           "the pixels");
     }
     size_t stride = (size_t)width * (size_t)channels;
     for (int y = 0; y < height; y++)

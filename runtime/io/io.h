@@ -46,7 +46,8 @@ int sc_check_text(const char *text, size_t size, const char *name, sc_error *err
 
 /* The end every reader shares: on failure (status not SC_OK) the scene is
  * freed and left empty; on success it is named after `name` and its loops
- * are validated. Returns the status. */
-int sc_finish_read(int status, const char *name, sc_scene *scene);
+ * are validated (which fails, filling `err`, only when memory runs out).
+ * Returns the status. */
+int sc_finish_read(int status, const char *name, sc_scene *scene, sc_error *err);
 
 #endif

@@ -128,14 +128,16 @@ void sc_pack_free(sc_pack *k)
     memset(k, 0, sizeof *k);
 }
 
-/* A copy of section s (count elements), or NULL for none. */
+/* A copy of section s (count elements), or NULL for none or when memory
+ * runs out. */
 static void *section_copy(const unsigned char *data, uint64_t offset, uint64_t count,
                           uint32_t size)
 {
     if (!count)
         return NULL;
-    void *p = sc_alloc((size_t)count, size);
-    memcpy(p, data + offset, (size_t)count * size);
+    void *p = sc_try_alloc((size_t)count, size);
+    if (p)
+        memcpy(p, data + offset, (size_t)count * size);
     return p;
 }
 
@@ -209,8 +211,13 @@ int sc_pack_parse(const unsigned char *data, size_t size, const char *name, sc_p
     k->nvertices = (int)counts[SEC_VERTICES];
     k->nindices = (int)counts[SEC_INDICES];
     k->nhulls = (int)counts[SEC_HULLS];
-    k->keys = sc_alloc((size_t)(k->nsurfaces ? k->nsurfaces : 1), SC_PACK_KEY_BYTES);
-    k->colours = sc_alloc((size_t)(k->nsurfaces ? k->nsurfaces : 1), 16);
+    k->keys = sc_try_alloc((size_t)(k->nsurfaces ? k->nsurfaces : 1), SC_PACK_KEY_BYTES);
+    k->colours = sc_try_alloc((size_t)(k->nsurfaces ? k->nsurfaces : 1), 16);
+    if (!k->keys || !k->colours) {
+        sc_pack_free(k);
+        return sc_fail_oom(err, name, 0, (size_t)k->nsurfaces + 1, SC_PACK_KEY_BYTES + 16,
+                           "the pack's surfaces");
+    }
     for (int i = 0; i < k->nsurfaces; i++) {
         const unsigned char *p = data + offsets[SEC_SURFACES] + (size_t)i * SURFACE_BYTES;
         memcpy(k->keys[i], p, SC_PACK_KEY_BYTES);
@@ -227,7 +234,18 @@ int sc_pack_parse(const unsigned char *data, size_t size, const char *name, sc_p
     k->vertices = section_copy(data, offsets[SEC_VERTICES], counts[SEC_VERTICES],
                                SC_PACK_VERTEX_BYTES);
     k->indices = section_copy(data, offsets[SEC_INDICES], counts[SEC_INDICES], 4);
-    k->hulls = sc_alloc((size_t)(k->nhulls ? k->nhulls : 1), sizeof *k->hulls);
+    k->hulls = sc_try_alloc((size_t)(k->nhulls ? k->nhulls : 1), sizeof *k->hulls);
+    const void *copies[SEC_COUNT + 1] = {NULL, NULL, NULL, k->points, k->knots, k->records,
+                                         k->vertices, k->indices, k->hulls};
+    for (int sec = SEC_POINTS; sec <= SEC_HULLS; sec++)
+        if ((counts[sec] || sec == SEC_HULLS) && !copies[sec]) {
+            char what[64];
+            snprintf(what, sizeof what, "section %s", section_names[sec]);
+            sc_pack_free(k);
+            return sc_fail_oom(err, name, 0, (size_t)counts[sec] + (sec == SEC_HULLS),
+                               sec == SEC_HULLS ? sizeof(sc_pack_hull) : element_bytes[sec],
+                               what);
+        }
     for (int i = 0; i < k->nhulls; i++) {
         const unsigned char *p = data + offsets[SEC_HULLS] + (size_t)i * HULL_BYTES;
         sc_pack_hull *h = &k->hulls[i];

@@ -116,9 +116,11 @@ static int read_patch(bpt_lexer *lx, int index, sc_scene *scene)
     if (sc_budget_charge(&lx->budget, sc_surface_bytes((int)du, (int)dv, (int)du + 1, (int)dv + 1),
                          "patch", lx->name, patch_line, lx->err))
         return SC_FAIL;
-    sc_surface *s = sc_scene_add_surface(scene);
+    sc_surface *s = sc_scene_try_add_surface(scene);
+    if (!s || sc_surface_try_alloc(s, (int)du, (int)dv, (int)du + 1, (int)dv + 1))
+        return sc_fail_oom(lx->err, lx->name, patch_line, 1,
+                           sc_surface_bytes((int)du, (int)dv, (int)du + 1, (int)dv + 1), "a patch");
     snprintf(s->name, sizeof s->name, "patch%d", index);
-    sc_surface_alloc(s, (int)du, (int)dv, (int)du + 1, (int)dv + 1);
     for (int k = 0; k <= du; k++) {
         s->knots_u[k] = 0;
         s->knots_u[du + 1 + k] = 1;
@@ -169,5 +171,5 @@ int sc_read_bpt(const char *text, size_t size, const char *name, sc_scene *scene
     if (sc_check_text(text, size, name, err))
         return SC_FAIL;
     bpt_lexer lx = {text, text + size, text, name, 1, 1, err, {0, 0}};
-    return sc_finish_read(read_all(&lx, scene), name, scene);
+    return sc_finish_read(read_all(&lx, scene), name, scene, err);
 }

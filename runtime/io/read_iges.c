@@ -298,7 +298,10 @@ static int finish_surface(reader *r, int owner, int base, sc_surface *s)
         snprintf(s->name, sizeof s->name, "%s.%d", r->ent[named].label, r->ent[named].subscript);
     else
         snprintf(s->name, sizeof s->name, "%s", r->ent[named].label);
-    sc_surface *dst = sc_scene_add_surface(r->scene);
+    sc_surface *dst = sc_scene_try_add_surface(r->scene);
+    if (!dst)
+        return iges_fail_oom(r, owner, ((size_t)r->scene->nsurfaces + 1) * sizeof(sc_surface),
+                             "the scene's surfaces");
     float default_color[3];
     memcpy(default_color, dst->color, sizeof default_color);
     *dst = *s;
@@ -400,7 +403,11 @@ static int build_trimmed(reader *r, int owner, int base, const int *loops, int n
         return SC_FAIL;
     }
     r->cur_owner = owner;
-    curve_list *model = sc_alloc((size_t)nloops + 1, sizeof(curve_list));
+    curve_list *model = sc_try_alloc((size_t)nloops + 1, sizeof(curve_list));
+    if (!model) {
+        sc_surface_free(&sf.nurbs);
+        return iges_fail_oom(r, owner, ((size_t)nloops + 1) * sizeof(curve_list), "its loops");
+    }
     int status = SC_OK, outer_added = 0, any_model = 0;
     sc_surface *s = &sf.nurbs;
     for (int i = 0; i < nloops && status == SC_OK; i++) {
@@ -493,7 +500,9 @@ static int convert_144(reader *r, const params *p)
         return SC_FAIL;
     if (n1 != 0 && outer < 0)
         n1 = 0;
-    int *loops = sc_alloc((size_t)n2 + 1, sizeof(int)), n = 0;
+    int *loops = sc_try_alloc((size_t)n2 + 1, sizeof(int)), n = 0;
+    if (!loops)
+        return iges_fail_oom(r, p->entity, ((size_t)n2 + 1) * sizeof(int), "its loops");
     int status = SC_OK;
     if (n1 != 0) {
         status = loop_pointers(r, p, 4, 1, 142, loops);
@@ -516,7 +525,9 @@ static int convert_143(reader *r, const params *p)
     int kind = base_surface(r, p, 2, &base);
     if (kind <= 0)
         return kind;
-    int *loops = sc_alloc((size_t)n + 1, sizeof(int));
+    int *loops = sc_try_alloc((size_t)n + 1, sizeof(int));
+    if (!loops)
+        return iges_fail_oom(r, p->entity, ((size_t)n + 1) * sizeof(int), "its boundaries");
     int status = loop_pointers(r, p, 4, n, 141, loops);
     if (status == SC_OK)
         status = build_trimmed(r, p->entity, base, loops, n, 1);
@@ -533,7 +544,9 @@ static int convert_510(reader *r, const params *p)
     int kind = base_surface(r, p, 1, &base);
     if (kind <= 0)
         return kind;
-    int *loops = sc_alloc((size_t)n + 1, sizeof(int));
+    int *loops = sc_try_alloc((size_t)n + 1, sizeof(int));
+    if (!loops)
+        return iges_fail_oom(r, p->entity, ((size_t)n + 1) * sizeof(int), "its loops");
     int status = loop_pointers(r, p, 4, n, 508, loops);
     if (status == SC_OK)
         status = build_trimmed(r, p->entity, base, loops, n, outer_first == 1);
@@ -735,5 +748,5 @@ int sc_read_iges(const char *text, size_t size, const char *name, sc_scene *scen
     free(r.parsed);
     free(r.rec);
     free(r.ent);
-    return sc_finish_read(status, name, scene);
+    return sc_finish_read(status, name, scene, err);
 }

@@ -33,19 +33,26 @@ static int is_space(char c)
 /* ---- logical lines: comments stripped, backslash continuations joined,
  * split into tokens; r->line is the first physical line. ---- */
 
-static void buf_append(obj_reader *r, const char *s, size_t n, size_t *len)
+static int buf_append(obj_reader *r, const char *s, size_t n, size_t *len)
 {
     if (*len + n + 2 > r->buf_cap) {
-        while (*len + n + 2 > r->buf_cap)
-            r->buf_cap = r->buf_cap ? 2 * r->buf_cap : 256;
-        r->buf = sc_realloc(r->buf, r->buf_cap, 1);
+        size_t cap = r->buf_cap;
+        while (*len + n + 2 > cap)
+            cap = cap ? 2 * cap : 256;
+        char *grown = sc_try_realloc(r->buf, cap, 1);
+        if (!grown)
+            return sc_fail_oom(r->err, r->name, r->line, cap, 1, "a statement");
+        r->buf = grown;
+        r->buf_cap = cap;
     }
     memcpy(r->buf + *len, s, n);
     *len += n;
     r->buf[(*len)++] = ' ';
     r->buf[*len] = 0;
+    return SC_OK;
 }
 
+/* 1: a statement was read; 0: the end; -1: out of memory (r->err set). */
 static int next_statement(obj_reader *r)
 {
     while (r->pos < r->end) {
@@ -65,7 +72,8 @@ static int next_statement(obj_reader *r)
             int more = stop > r->pos && stop[-1] == '\\';
             if (more)
                 stop--;
-            buf_append(r, r->pos, (size_t)(stop - r->pos), &len);
+            if (buf_append(r, r->pos, (size_t)(stop - r->pos), &len))
+                return -1;
             r->pos = eol < r->end ? eol + 1 : r->end;
             r->next_line++;
             if (!more || r->pos >= r->end)
@@ -78,8 +86,13 @@ static int next_statement(obj_reader *r)
             if (!*p)
                 break;
             if (r->ntok == r->tok_cap) {
-                r->tok_cap = r->tok_cap ? 2 * r->tok_cap : 32;
-                r->tok = sc_realloc(r->tok, (size_t)r->tok_cap, sizeof *r->tok);
+                int cap = r->tok_cap ? 2 * r->tok_cap : 32;
+                char **grown = sc_try_realloc(r->tok, (size_t)cap, sizeof *r->tok);
+                if (!grown)
+                    return sc_fail_oom(r->err, r->name, r->line, (size_t)cap, sizeof *r->tok,
+                                       "the words of a statement"), -1;
+                r->tok = grown;
+                r->tok_cap = cap;
             }
             r->tok[r->ntok++] = p;
             while (*p && !is_space(*p))
@@ -147,8 +160,13 @@ static int add_vertex(obj_reader *r, obj_vertex_list *list, int min, int max, co
     if (sc_budget_charge(&r->budget, sizeof *list->v, what, r->name, r->line, r->err))
         return SC_FAIL;
     if (list->count == list->cap) {
-        list->cap = list->cap ? 2 * list->cap : 64;
-        list->v = sc_realloc(list->v, (size_t)list->cap, sizeof *list->v);
+        int cap = list->cap ? 2 * list->cap : 64;
+        obj_vertex *grown = sc_try_realloc(list->v, (size_t)cap, sizeof *list->v);
+        if (!grown)
+            return sc_fail_oom(r->err, r->name, r->line, (size_t)cap, sizeof *list->v,
+                               "the vertex list");
+        list->v = grown;
+        list->cap = cap;
     }
     obj_vertex *v = &list->v[list->count];
     v->x[0] = v->x[1] = v->x[2] = 0;
@@ -207,7 +225,14 @@ static void parse_mtl(obj_reader *r, const char *text, size_t size, const char *
                 cur = NULL;
                 continue;
             }
-            r->materials = sc_realloc(r->materials, (size_t)r->nmaterials + 1, sizeof *r->materials);
+            obj_material *grown = sc_try_realloc(r->materials, (size_t)r->nmaterials + 1,
+                                                 sizeof *r->materials);
+            if (!grown) {
+                sc_log(SC_LOG_WARN, "%s:%d: out of memory for the materials (the rest of the "
+                       "library ignored)", path, line);
+                return;
+            }
+            r->materials = grown;
             cur = &r->materials[r->nmaterials++];
             snprintf(cur->name, sizeof cur->name, "%s", name);
             cur->kd[0] = cur->kd[1] = cur->kd[2] = 0.8f;
@@ -310,7 +335,9 @@ static int begin_element(obj_reader *r, obj_element_kind kind)
         return fail(r, r->line, "curv2 needs at least two control points");
     }
     el->nidx = r->ntok - first;
-    el->idx = sc_alloc((size_t)el->nidx, sizeof(int));
+    if (!(el->idx = sc_try_alloc((size_t)el->nidx, sizeof(int))))
+        return sc_fail_oom(r->err, r->name, r->line, (size_t)el->nidx, sizeof(int),
+                           "the control point list");
     obj_vertex_list *list = kind == EL_SURF ? &r->verts : &r->pverts;
     for (int i = 0; i < el->nidx; i++)
         if (parse_ref(r, r->tok[first + i], list->count,
@@ -332,7 +359,9 @@ static int statement_parm(obj_reader *r)
     if (el->kind == EL_SPACE_CURVE)
         return SC_OK;
     int n = r->ntok - 2;
-    double *v = sc_alloc((size_t)n, sizeof(double));
+    double *v = sc_try_alloc((size_t)n, sizeof(double));
+    if (!v)
+        return sc_fail_oom(r->err, r->name, r->line, (size_t)n, sizeof(double), "parm values");
     for (int i = 0; i < n; i++)
         if (parse_double(r, r->tok[2 + i], "parm value", &v[i])) {
             free(v);
@@ -358,12 +387,18 @@ static int statement_loop(obj_reader *r, int is_hole)
     if (n / 3 > SC_MAX_LOOP_PIECES)
         return fail(r, r->line, "%s has %d curves: more than the %d a loop may have "
                     "(docs/limits.md)", what, n / 3, SC_MAX_LOOP_PIECES);
-    el->loops = sc_realloc(el->loops, (size_t)el->nloops + 1, sizeof *el->loops);
+    obj_loop_ref *grown = sc_try_realloc(el->loops, (size_t)el->nloops + 1, sizeof *el->loops);
+    if (!grown)
+        return sc_fail_oom(r->err, r->name, r->line, (size_t)el->nloops + 1, sizeof *el->loops,
+                           "the loops of a surf");
+    el->loops = grown;
     obj_loop_ref *loop = &el->loops[el->nloops++];
     loop->is_hole = is_hole;
     loop->line = r->line;
     loop->nrefs = n / 3;
-    loop->refs = sc_alloc((size_t)loop->nrefs, sizeof *loop->refs);
+    if (!(loop->refs = sc_try_alloc((size_t)loop->nrefs, sizeof *loop->refs)))
+        return sc_fail_oom(r->err, r->name, r->line, (size_t)loop->nrefs, sizeof *loop->refs,
+                           what);
     for (int i = 0; i < loop->nrefs; i++) {
         obj_trim_ref *ref = &loop->refs[i];
         if (parse_double(r, r->tok[1 + 3 * i], what, &ref->t0) ||
@@ -556,9 +591,12 @@ static void note_skipped(obj_reader *r, int count, const char *type, const char 
 
 static int read_all(obj_reader *r)
 {
-    while (next_statement(r))
+    int more;
+    while ((more = next_statement(r)) > 0)
         if (statement(r))
             return SC_FAIL;
+    if (more < 0)
+        return SC_FAIL;
     if (r->el.kind != EL_NONE)
         return fail(r, r->el.line, "the %s body that begins here has no end statement (file "
                     "truncated?)", element_name(r->el.kind));
@@ -596,5 +634,5 @@ int sc_read_obj(const char *text, size_t size, const char *name, sc_scene *scene
         sc_curve_free(&r.curves[i]);
     free(r.curves);
     free(r.materials);
-    return sc_finish_read(status, name, scene);
+    return sc_finish_read(status, name, scene, err);
 }

@@ -43,7 +43,8 @@ static int element_knots(obj_reader *r, int dir, double **knots, int *ncp)
         *ncp = np - p - 1;
         if (!(parm[p] < parm[*ncp]))
             return fail(r, line, "parm %c: the knots give an empty parameter range", d);
-        *knots = sc_alloc((size_t)np, sizeof(double));
+        if (!(*knots = sc_try_alloc((size_t)np, sizeof(double))))
+            return sc_fail_oom(r->err, r->name, line, (size_t)np, sizeof(double), "knots");
         memcpy(*knots, parm, sizeof(double) * (size_t)np);
         return SC_OK;
     }
@@ -57,7 +58,9 @@ static int element_knots(obj_reader *r, int dir, double **knots, int *ncp)
         return fail(r, line, "parm %c gives %d Bezier segments of degree %d: more than the %d "
                     "control points can hold", d, segments, p, r->el.nidx);
     *ncp = segments * p + 1;
-    double *k = sc_alloc((size_t)(*ncp + p + 1), sizeof(double));
+    double *k = sc_try_alloc((size_t)(*ncp + p + 1), sizeof(double));
+    if (!k)
+        return sc_fail_oom(r->err, r->name, line, (size_t)(*ncp + p + 1), sizeof(double), "knots");
     int n = 0;
     for (int i = 0; i <= p; i++)
         k[n++] = parm[0];
@@ -120,7 +123,11 @@ int sc_obj_finish_curv2(obj_reader *r)
         return SC_FAIL;
     }
     sc_curve c;
-    sc_curve_alloc(&c, 2, el->deg[0], ncp);
+    if (sc_curve_try_alloc(&c, 2, el->deg[0], ncp)) {
+        free(knots);
+        return sc_fail_oom(r->err, r->name, el->line, 1, sc_curve_bytes(2, el->deg[0], ncp),
+                           "curv2");
+    }
     memcpy(c.knots, knots, sizeof(double) * (size_t)(ncp + el->deg[0] + 1));
     free(knots);
     for (int i = 0; i < ncp; i++) {
@@ -144,7 +151,13 @@ int sc_obj_finish_curv2(obj_reader *r)
         sc_curve_free(&c);
         return fail(r, el->line, "curv2: %s", check.message);
     }
-    r->curves = sc_realloc(r->curves, (size_t)r->ncurves + 1, sizeof *r->curves);
+    sc_curve *grown = sc_try_realloc(r->curves, (size_t)r->ncurves + 1, sizeof *r->curves);
+    if (!grown) {
+        sc_curve_free(&c);
+        return sc_fail_oom(r->err, r->name, el->line, (size_t)r->ncurves + 1, sizeof *r->curves,
+                           "the curv2 list");
+    }
+    r->curves = grown;
     r->curves[r->ncurves++] = c;
     return SC_OK;
 }
@@ -170,11 +183,24 @@ static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_re
                          loop->is_hole ? "hole" : "trim", r->name, loop->line, r->err))
         return SC_FAIL;
     /* Ends within the tolerance of the domain's are the domain's. */
-    sc_curve_copy(out, c);
+    if (sc_curve_try_alloc(out, c->dim, c->degree, c->ncp))
+        return sc_fail_oom(r->err, r->name, loop->line, 1, sc_curve_bytes(2, c->degree, c->ncp),
+                           loop->is_hole ? "hole" : "trim");
+    memcpy(out->knots, c->knots, sizeof(double) * (size_t)(c->ncp + c->degree + 1));
+    memcpy(out->cp, c->cp, sizeof(double) * (size_t)c->ncp * (size_t)(c->dim + 1));
     sc_curve_restrict(out, lo > t0 + tol ? lo : t0, hi < t1 - tol ? hi : t1);
     if (ref->t0 > ref->t1)
         sc_curve_reverse(out);
     return SC_OK;
+}
+
+/* Knots with degree+1 equal ends that are the range `lim` (two values). */
+static int is_clamped(const double *knots, int ncp, int p, const double *lim)
+{
+    for (int i = 1; i <= p; i++)
+        if (knots[i] != knots[0] || knots[ncp + p - i] != knots[ncp + p])
+            return 0;
+    return knots[0] == lim[0] && knots[ncp + p] == lim[1];
 }
 
 int sc_obj_finish_surf(obj_reader *r)
@@ -229,7 +255,12 @@ int sc_obj_finish_surf(obj_reader *r)
     }
     sc_surface s;
     memset(&s, 0, sizeof s);
-    sc_surface_alloc(&s, el->deg[0], el->deg[1], n[0], n[1]);
+    if (sc_surface_try_alloc(&s, el->deg[0], el->deg[1], n[0], n[1])) {
+        free(knots[0]);
+        free(knots[1]);
+        return sc_fail_oom(r->err, r->name, el->line, 1,
+                           sc_surface_bytes(el->deg[0], el->deg[1], n[0], n[1]), "surf");
+    }
     memcpy(s.knots_u, knots[0], sizeof(double) * (size_t)(n[0] + el->deg[0] + 1));
     memcpy(s.knots_v, knots[1], sizeof(double) * (size_t)(n[1] + el->deg[1] + 1));
     free(knots[0]);
@@ -241,12 +272,22 @@ int sc_obj_finish_surf(obj_reader *r)
         }
     static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     memcpy(s.xform, identity, sizeof identity);
+    /* Most surfaces (every Bézier patch) are clamped and used whole
+     * already: clamping and restricting them would copy them unchanged. */
+    int as_is = is_clamped(s.knots_u, n[0], el->deg[0], lim) &&
+                is_clamped(s.knots_v, n[1], el->deg[1], lim + 2);
     sc_surface clamped;
-    sc_surface_clamp(&s, &clamped);
-    sc_surface_free(&s);
-    s = clamped;
-    sc_surface_restrict(&s, 0, lim[0], lim[1]);
-    sc_surface_restrict(&s, 1, lim[2], lim[3]);
+    int status = as_is ? SC_OK : sc_surface_try_clamp(&s, &clamped);
+    if (!as_is) {
+        sc_surface_free(&s);
+        s = clamped;
+    }
+    if (status || (!as_is && (sc_surface_try_restrict(&s, 0, lim[0], lim[1]) ||
+                              sc_surface_try_restrict(&s, 1, lim[2], lim[3])))) {
+        sc_surface_free(&s);
+        return sc_fail_oom(r->err, r->name, el->line, 3,
+                           sc_surface_bytes(el->deg[0], el->deg[1], n[0], n[1]), "surf");
+    }
     sc_surface_update_rational(&s);
     sc_error check;
     if (sc_surface_check(&s, &check)) {
@@ -254,12 +295,20 @@ int sc_obj_finish_surf(obj_reader *r)
         return fail(r, el->line, "surf: %s", check.message);
     }
     if (el->nloops) {
-        s.loops = sc_alloc((size_t)el->nloops, sizeof(sc_loop));
+        if (!(s.loops = sc_try_alloc((size_t)el->nloops, sizeof(sc_loop)))) {
+            sc_surface_free(&s);
+            return sc_fail_oom(r->err, r->name, el->line, (size_t)el->nloops, sizeof(sc_loop),
+                               "trim loops");
+        }
         for (int l = 0; l < el->nloops; l++) {
             const obj_loop_ref *ref = &el->loops[l];
             sc_loop *loop = &s.loops[s.nloops++];
             loop->is_hole = ref->is_hole;
-            loop->curves = sc_alloc((size_t)ref->nrefs, sizeof(sc_curve));
+            if (!(loop->curves = sc_try_alloc((size_t)ref->nrefs, sizeof(sc_curve)))) {
+                sc_surface_free(&s);
+                return sc_fail_oom(r->err, r->name, ref->line, (size_t)ref->nrefs,
+                                   sizeof(sc_curve), "a trim loop");
+            }
             for (int c = 0; c < ref->nrefs; c++) {
                 if (trim_piece(r, ref, &ref->refs[c], &loop->curves[c])) {
                     sc_surface_free(&s);
@@ -269,7 +318,12 @@ int sc_obj_finish_surf(obj_reader *r)
             }
         }
     }
-    sc_surface *dst = sc_scene_add_surface(r->scene);
+    sc_surface *dst = sc_scene_try_add_surface(r->scene);
+    if (!dst) {
+        sc_surface_free(&s);
+        return sc_fail_oom(r->err, r->name, el->line, (size_t)r->scene->nsurfaces + 1,
+                           sizeof(sc_surface), "the scene's surfaces");
+    }
     if (r->cur_name[0])
         snprintf(s.name, sizeof s.name, "%s", r->cur_name);
     else

@@ -13,10 +13,10 @@ int sc_read_step(const char *text, size_t size, const char *name, sc_scene *scen
     if (size > SC_STEP_MAX_FILE_BYTES)
         return sc_finish_read(sc_fail(err, name, 0, "larger than the limit of a STEP file (at "
                                       "most %zu MiB are read; docs/limits.md)",
-                                      SC_STEP_MAX_FILE_BYTES >> 20), name, scene);
+                                      SC_STEP_MAX_FILE_BYTES >> 20), name, scene, err);
     sc_step_scan scan;
     if (sc_step_scan_text(text, size, name, &scan, err))
-        return sc_finish_read(SC_FAIL, name, scene);
+        return sc_finish_read(SC_FAIL, name, scene, err);
 #ifdef SC_HAVE_OCCT
     int status = sc_step_read_isolated(text, size, name, &scan, SC_STEP_MAX_SECONDS, scene,
                                        err);
@@ -25,5 +25,5 @@ int sc_read_step(const char *text, size_t size, const char *name, sc_scene *scen
                          "when splinecast was built; docs/step.md)");
 #endif
     sc_step_scan_free(&scan);
-    return sc_finish_read(status, name, scene);
+    return sc_finish_read(status, name, scene, err);
 }

@@ -71,13 +71,15 @@ int sc_check_text(const char *text, size_t size, const char *name, sc_error *err
     return SC_OK;
 }
 
-int sc_finish_read(int status, const char *name, sc_scene *scene)
+int sc_finish_read(int status, const char *name, sc_scene *scene, sc_error *err)
 {
+    if (status == SC_OK) {
+        snprintf(scene->source, sizeof scene->source, "%s", name);
+        status = sc_scene_validate_loops(scene, err);
+    }
     if (status != SC_OK) {
         sc_scene_free(scene);
         return SC_FAIL;
     }
-    snprintf(scene->source, sizeof scene->source, "%s", name);
-    sc_scene_validate_loops(scene);
     return SC_OK;
 }

@@ -95,12 +95,19 @@ static int keyword_is(const scanner *sc, size_t len, const char *kw)
     return len == strlen(kw) && !strncmp(sc->s + sc->i, kw, len);
 }
 
+/* Fails when memory runs out (both arrays still valid). */
 static int push(int **a, int **b, int *n, int *cap, int x, int y)
 {
     if (*n == *cap) {
-        *cap = *cap ? 2 * *cap : 256;
-        *a = sc_realloc(*a, (size_t)*cap, sizeof **a);
-        *b = sc_realloc(*b, (size_t)*cap, sizeof **b);
+        int grow = *cap ? 2 * *cap : 256;
+        int *ga = sc_try_realloc(*a, (size_t)grow, sizeof **a);
+        if (ga)
+            *a = ga;
+        int *gb = ga ? sc_try_realloc(*b, (size_t)grow, sizeof **b) : NULL;
+        if (!gb)
+            return SC_FAIL;
+        *b = gb;
+        *cap = grow;
     }
     (*a)[*n] = x;
     (*b)[*n] = y;
@@ -213,7 +220,9 @@ static int scan_params(scanner *sc, int start_line, int data)
                 return fail(sc, sc->line, "instance reference in the header section");
             if (read_id(sc, &id))
                 return SC_FAIL;
-            push(&sc->ref_id, &sc->ref_line, &sc->nref, &sc->capref, id, sc->line);
+            if (push(&sc->ref_id, &sc->ref_line, &sc->nref, &sc->capref, id, sc->line))
+                return sc_fail_oom(sc->err, sc->name, sc->line, (size_t)sc->capref * 2,
+                                   2 * sizeof(int), "instance references");
         } else if (c == '$' || c == '*') {
             sc->i++;
         } else if (is_word(c) || c == '+' || c == '.' || c == '!') {
@@ -298,7 +307,9 @@ static int scan_instance(scanner *sc)
     }
     if (expect_char(sc, ';', "expected `;` at the end of the instance"))
         return SC_FAIL;
-    push(&sc->inst_id, &sc->inst_line, &sc->ninst, &sc->capinst, id, line);
+    if (push(&sc->inst_id, &sc->inst_line, &sc->ninst, &sc->capinst, id, line))
+        return sc_fail_oom(sc->err, sc->name, line, (size_t)sc->capinst * 2, 2 * sizeof(int),
+                           "instances");
     sc->faces += face;
     return SC_OK;
 }

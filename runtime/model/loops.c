@@ -41,7 +41,7 @@ enum { FLAT_MAX_DEPTH = 14, FLAT_MAX_POINTS = 1 << 22, GRID_MAX_SIDE = 2048 };
 /* Grid entries and segment pairs tested per loop: PAIR_BUDGET per segment,
  * and at least PAIR_FLOOR (any loop of up to about 2,900 segments is
  * checked whole). */
-enum { PAIR_BUDGET = 16, PAIR_FLOOR = 1 << 22, CROSSING_UNKNOWN = -1 };
+enum { PAIR_BUDGET = 16, PAIR_FLOOR = 1 << 22, CROSSING_UNKNOWN = -1, CROSSING_NO_MEMORY = -2 };
 
 /* ---- curve ends ---- */
 
@@ -93,18 +93,27 @@ typedef struct polyline {
      * vertices 1..k where one curve ends and the next begins. */
     double *arc;
     int *junctions;
+    size_t failed; /* bytes that could not be allocated */
 } polyline;
 
 /* Consecutive equal vertices are merged: the crossing test below relies on
- * segments of non-zero length. */
+ * segments of non-zero length. Fails when memory runs out (pl->failed). */
 static void poly_push(polyline *pl, double x, double y, int curve)
 {
-    if (pl->n > 0 && pl->xy[2 * pl->n - 2] == x && pl->xy[2 * pl->n - 1] == y)
+    if (pl->failed || (pl->n > 0 && pl->xy[2 * pl->n - 2] == x && pl->xy[2 * pl->n - 1] == y))
         return;
     if (pl->n == pl->cap) {
-        pl->cap = pl->cap ? 2 * pl->cap : 256;
-        pl->xy = sc_realloc(pl->xy, (size_t)pl->cap * 2, sizeof(double));
-        pl->curve = sc_realloc(pl->curve, (size_t)pl->cap, sizeof(int));
+        int cap = pl->cap ? 2 * pl->cap : 256;
+        double *xy = sc_try_realloc(pl->xy, (size_t)cap * 2, sizeof(double));
+        if (xy)
+            pl->xy = xy;
+        int *c = xy ? sc_try_realloc(pl->curve, (size_t)cap, sizeof(int)) : NULL;
+        if (!c) {
+            pl->failed = (size_t)cap * (2 * sizeof(double) + sizeof(int));
+            return;
+        }
+        pl->curve = c;
+        pl->cap = cap;
     }
     pl->xy[2 * pl->n] = x;
     pl->xy[2 * pl->n + 1] = y;
@@ -251,8 +260,12 @@ static int segments_cross(const polyline *pl, int i, int j, double at[2])
 static void measure_loop(polyline *pl)
 {
     int n = pl->n;
-    pl->arc = sc_alloc((size_t)n + 1, sizeof(double));
-    pl->junctions = sc_alloc((size_t)n + 1, sizeof(int));
+    pl->arc = sc_try_alloc((size_t)n + 1, sizeof(double));
+    pl->junctions = sc_try_alloc((size_t)n + 1, sizeof(int));
+    if (!pl->arc || !pl->junctions) {
+        pl->failed = ((size_t)n + 1) * (sizeof(double) + sizeof(int));
+        return;
+    }
     for (int k = 1; k <= n; k++) {
         const double *a = vertex(pl, k - 1), *b = vertex(pl, k);
         pl->arc[k] = pl->arc[k - 1] + hypot(b[0] - a[0], b[1] - a[1]);
@@ -379,8 +392,13 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
     if (!(g.cell_h > 0))
         g.cell_h = 1, g.ny = 1;
     int ncells = g.nx * g.ny;
-    g.start = sc_alloc((size_t)ncells + 1, sizeof(int));
-    int *count = sc_alloc((size_t)ncells, sizeof(int));
+    g.start = sc_try_alloc((size_t)ncells + 1, sizeof(int));
+    int *count = sc_try_alloc((size_t)ncells, sizeof(int));
+    if (!g.start || !count) {
+        free(g.start);
+        free(count);
+        return CROSSING_NO_MEMORY;
+    }
     /* Long overlapping segments cover many cells each: the entries share
      * the budget of the pair tests. */
     long long budget = (long long)PAIR_BUDGET * n > PAIR_FLOOR ? (long long)PAIR_BUDGET * n
@@ -395,7 +413,12 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
     }
     for (int c = 0; c < ncells; c++)
         g.start[c + 1] = g.start[c] + count[c];
-    g.entries = sc_alloc((size_t)g.start[ncells], sizeof(int));
+    g.entries = sc_try_alloc((size_t)g.start[ncells], sizeof(int));
+    if (!g.entries) {
+        free(count);
+        free(g.start);
+        return CROSSING_NO_MEMORY;
+    }
     memcpy(count, g.start, sizeof(int) * (size_t)ncells);
     for (int i = 0; i < n; i++)
         cover_cells(&g, pl->xy + 2 * i, pl->xy + 2 * ((i + 1) % n), i, NULL, count);
@@ -432,10 +455,14 @@ static int find_crossing(const polyline *pl, double size, int *seg_a, int *seg_b
 
 /* ---- one loop ---- */
 
+/* What a step of one loop's validation returns when memory runs out. */
+enum { LOOP_NO_MEMORY = -1 };
+
 typedef struct loop_site {
     sc_scene *scene;
     int surface;
     int loop;
+    size_t *oom; /* the bytes that could not be allocated */
 } loop_site;
 
 /* "FILE: " when the scene came from a file (readers set scene->source
@@ -446,11 +473,14 @@ typedef struct loop_site {
         (site)->scene->surfaces[(site)->surface].name, (site)->loop
 
 /* Closes the gaps of a loop or decides to drop it. Returns 1 to keep, and
- * then fills `lay`. */
+ * then fills `lay`; LOOP_NO_MEMORY when memory runs out (the loop as it
+ * was). */
 static int close_gaps(const loop_site *site, sc_loop *loop, double size, loop_layout *lay)
 {
     int n = loop->ncurves;
-    double *gaps = sc_alloc((size_t)n, sizeof(double));
+    double *gaps = sc_try_alloc((size_t)n, sizeof(double));
+    if (!gaps)
+        return *site->oom = (size_t)n * sizeof(double), LOOP_NO_MEMORY;
     for (int k = 0; k < n; k++) {
         double a[2], b[2];
         end_point(&loop->curves[k], 1, a);
@@ -467,8 +497,14 @@ static int close_gaps(const loop_site *site, sc_loop *loop, double size, loop_la
     for (int k = 0; k < n; k++)
         if (gaps[k] > GAP_SILENT)
             repairs++;
-    sc_curve *curves = sc_alloc((size_t)(n + repairs), sizeof(sc_curve));
-    lay->origin = sc_alloc((size_t)(n + repairs), sizeof(int));
+    sc_curve *curves = sc_try_alloc((size_t)(n + repairs), sizeof(sc_curve));
+    lay->origin = sc_try_alloc((size_t)(n + repairs), sizeof(int));
+    if (!curves || !lay->origin) {
+        free(curves);
+        free(gaps);
+        return *site->oom = (size_t)(n + repairs) * (sizeof(sc_curve) + sizeof(int)),
+               LOOP_NO_MEMORY;
+    }
     int out = 0;
     for (int k = 0; k < n; k++) {
         sc_curve *cur = &loop->curves[k], *next = &loop->curves[(k + 1) % n];
@@ -529,11 +565,15 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
 {
     polyline pl = {0};
     flatten_loop(loop, FLAT_TOL * size, &pl);
-    measure_loop(&pl);
+    if (!pl.failed)
+        measure_loop(&pl);
     int a, b;
     double at[2];
-    int crossing = find_crossing(&pl, size, &a, &b, at);
-    if (crossing == CROSSING_UNKNOWN) {
+    int crossing = pl.failed ? CROSSING_NO_MEMORY : find_crossing(&pl, size, &a, &b, at);
+    int no_memory = crossing == CROSSING_NO_MEMORY;
+    if (no_memory) {
+        *site->oom = pl.failed ? pl.failed : (size_t)pl.n * 2 * sizeof(int);
+    } else if (crossing == CROSSING_UNKNOWN) {
         sc_log(SC_LOG_WARN, LOOP_FMT " dropped: %d of its segments overlap so much that "
                "checking it for self-crossings would take too long (collinear repeated "
                "curves?)", LOOP_ARGS(site), pl.n);
@@ -547,7 +587,7 @@ static int check_simple(const loop_site *site, const sc_loop *loop, const loop_l
     free(pl.curve);
     free(pl.arc);
     free(pl.junctions);
-    return !crossing;
+    return no_memory ? LOOP_NO_MEMORY : !crossing;
 }
 
 static void free_loop(sc_loop *loop)
@@ -558,7 +598,7 @@ static void free_loop(sc_loop *loop)
     memset(loop, 0, sizeof *loop);
 }
 
-void sc_scene_validate_loops(sc_scene *scene)
+int sc_scene_validate_loops(sc_scene *scene, sc_error *err)
 {
     for (int si = 0; si < scene->nsurfaces; si++) {
         sc_surface *s = &scene->surfaces[si];
@@ -571,12 +611,28 @@ void sc_scene_validate_loops(sc_scene *scene)
             size = 1;
         int kept = 0;
         for (int li = 0; li < s->nloops; li++) {
-            loop_site site = {scene, si, li};
+            size_t oom = 0;
+            loop_site site = {scene, si, li, &oom};
             sc_loop *loop = &s->loops[li];
             loop_layout lay = {0};
-            int keep = check_curves(&site, loop) && close_gaps(&site, loop, size, &lay) &&
-                       check_simple(&site, loop, &lay, size);
+            int keep = check_curves(&site, loop);
+            if (keep)
+                keep = close_gaps(&site, loop, size, &lay);
+            if (keep == 1)
+                keep = check_simple(&site, loop, &lay, size);
             free(lay.origin);
+            if (keep == LOOP_NO_MEMORY) {
+                /* The loops not yet validated stay, so that the scene can
+                 * be freed whole; the reader fails. */
+                for (int rest = li; rest < s->nloops; rest++)
+                    s->loops[kept++] = s->loops[rest];
+                s->nloops = kept;
+                char what[160];
+                snprintf(what, sizeof what, "validating trim loop %d of surface %d (%s)", li, si,
+                         s->name);
+                return sc_fail_oom(err, scene->source[0] ? scene->source : NULL, 0, oom, 1,
+                                   what);
+            }
             if (keep) {
                 s->loops[kept++] = *loop;
                 continue;
@@ -592,4 +648,5 @@ void sc_scene_validate_loops(sc_scene *scene)
             s->loops = NULL;
         }
     }
+    return SC_OK;
 }

@@ -75,6 +75,9 @@ void sc_curve_reverse(sc_curve *c);
  * result is clamped in both directions and keeps the trim loops, which
  * restriction does not move. */
 void sc_surface_restrict(sc_surface *s, int dir, double a, double b);
+/* The same, failing (s unchanged) when the surface-sized arrays cannot be
+ * allocated, for surfaces read from a file. */
+int sc_surface_try_restrict(sc_surface *s, int dir, double a, double b);
 
 /* Bézier segments: *count segments written to a new array of curves, each
  * with degree+1 control points and knots [a..a b..b] keeping its original
@@ -92,6 +95,9 @@ void sc_surface_split(const sc_surface *s, int dir, double t, sc_surface *lo,
 void sc_surface_elevate(const sc_surface *s, int dir, int times, sc_surface *out);
 /* sc_curve_clamp in both directions. */
 void sc_surface_clamp(const sc_surface *s, sc_surface *out);
+/* The same, failing (out zeroed) when the surface-sized arrays cannot be
+ * allocated. */
+int sc_surface_try_clamp(const sc_surface *s, sc_surface *out);
 
 /* One Bézier patch of a surface, with its parameter rectangle in the
  * surface's own domain. cp layout as sc_surface: 4 doubles per point,

@@ -563,7 +563,11 @@ static size_t line_index(int dir, int nu, int along, int across)
                     : (size_t)along * (size_t)nu + (size_t)across;
 }
 
-static void surface_run_job(const sc_surface *s, int dir, const curve_job *job, sc_surface *out)
+/* With `checked`, fails (out zeroed, nothing kept) when the surface-sized
+ * arrays cannot be allocated; a row's scratch curves still use the aborting
+ * allocation. Without, aborts as sc_alloc does. */
+static int surface_run_job(const sc_surface *s, int dir, const curve_job *job, sc_surface *out,
+                           int checked)
 {
     int nouts = job_outputs(job);
     int along_n = dir == 0 ? s->nu : s->nv, across_n = dir == 0 ? s->nv : s->nu;
@@ -572,7 +576,11 @@ static void surface_run_job(const sc_surface *s, int dir, const curve_job *job, 
     line.degree = dir == 0 ? s->deg_u : s->deg_v;
     line.ncp = along_n;
     line.knots = dir == 0 ? s->knots_u : s->knots_v;
-    line.cp = sc_alloc((size_t)along_n * 4, sizeof(double));
+    line.cp = checked ? sc_try_alloc((size_t)along_n * 4, sizeof(double))
+                      : sc_alloc((size_t)along_n * 4, sizeof(double));
+    memset(out, 0, sizeof *out * (size_t)nouts);
+    if (!line.cp)
+        return SC_FAIL;
     for (int j = 0; j < across_n; j++) {
         for (int i = 0; i < along_n; i++)
             copy_point(line.cp + 4 * i, s->cp + 4 * line_index(dir, s->nu, i, j), 4);
@@ -587,7 +595,17 @@ static void surface_run_job(const sc_surface *s, int dir, const curve_job *job, 
                 int nu = dir == 0 ? res[o].ncp : s->nu, nv = dir == 0 ? s->nv : res[o].ncp;
                 int du = dir == 0 ? res[o].degree : s->deg_u;
                 int dv = dir == 0 ? s->deg_v : res[o].degree;
-                sc_surface_alloc(dst, du, dv, nu, nv);
+                if (!checked)
+                    sc_surface_alloc(dst, du, dv, nu, nv);
+                else if (sc_surface_try_alloc(dst, du, dv, nu, nv)) {
+                    for (int k = 0; k < nouts; k++)
+                        sc_curve_free(&res[k]);
+                    for (int k = 0; k < o; k++)
+                        sc_surface_free(&out[k]);
+                    memset(out, 0, sizeof *out * (size_t)nouts);
+                    free(line.cp);
+                    return SC_FAIL;
+                }
                 double *kn = dir == 0 ? dst->knots_u : dst->knots_v;
                 memcpy(kn, res[o].knots, sizeof(double) * knot_count(&res[o]));
                 if (dir == 0)
@@ -601,25 +619,27 @@ static void surface_run_job(const sc_surface *s, int dir, const curve_job *job, 
         }
     }
     free(line.cp);
+    return SC_OK;
 }
+
 
 void sc_surface_insert_knot(const sc_surface *s, int dir, double t, int times, sc_surface *out)
 {
     curve_job job = {.kind = JOB_INSERT, .t = t, .times = times};
-    surface_run_job(s, dir, &job, out);
+    surface_run_job(s, dir, &job, out, 0);
 }
 
 void sc_surface_refine(const sc_surface *s, int dir, const double *x, int nx, sc_surface *out)
 {
     curve_job job = {.kind = JOB_REFINE, .x = x, .nx = nx};
-    surface_run_job(s, dir, &job, out);
+    surface_run_job(s, dir, &job, out, 0);
 }
 
 void sc_surface_split(const sc_surface *s, int dir, double t, sc_surface *lo, sc_surface *hi)
 {
     sc_surface halves[2];
     curve_job job = {.kind = JOB_SPLIT, .t = t};
-    surface_run_job(s, dir, &job, halves);
+    surface_run_job(s, dir, &job, halves, 0);
     *lo = halves[0];
     *hi = halves[1];
 }
@@ -627,33 +647,54 @@ void sc_surface_split(const sc_surface *s, int dir, double t, sc_surface *lo, sc
 void sc_surface_elevate(const sc_surface *s, int dir, int times, sc_surface *out)
 {
     curve_job job = {.kind = JOB_ELEVATE, .times = times};
-    surface_run_job(s, dir, &job, out);
+    surface_run_job(s, dir, &job, out, 0);
 }
 
-void sc_surface_clamp(const sc_surface *s, sc_surface *out)
+static int surface_clamp(const sc_surface *s, sc_surface *out, int checked)
 {
     curve_job job = {.kind = JOB_CLAMP};
     sc_surface clamped_u;
-    surface_run_job(s, 0, &job, &clamped_u);
-    surface_run_job(&clamped_u, 1, &job, out);
+    memset(out, 0, sizeof *out);
+    if (surface_run_job(s, 0, &job, &clamped_u, checked))
+        return SC_FAIL;
+    int status = surface_run_job(&clamped_u, 1, &job, out, checked);
     sc_surface_free(&clamped_u);
+    return status;
 }
+
+int sc_surface_try_clamp(const sc_surface *s, sc_surface *out) { return surface_clamp(s, out, 1); }
+
+void sc_surface_clamp(const sc_surface *s, sc_surface *out) { surface_clamp(s, out, 0); }
 
 /* Clamped in both directions first, so that every row holds the same
  * clamped knots and restricting each row is restricting the surface. */
-void sc_surface_restrict(sc_surface *s, int dir, double a, double b)
+static int surface_restrict(sc_surface *s, int dir, double a, double b, int checked)
 {
     sc_surface clamped, out;
-    sc_surface_clamp(s, &clamped);
+    if (surface_clamp(s, &clamped, checked))
+        return SC_FAIL;
     curve_job job = {.kind = JOB_RESTRICT, .t = a, .t_end = b};
-    surface_run_job(&clamped, dir, &job, &out);
+    int status = surface_run_job(&clamped, dir, &job, &out, checked);
     sc_surface_free(&clamped);
+    if (status != SC_OK)
+        return SC_FAIL;
     out.loops = s->loops;
     out.nloops = s->nloops;
     s->loops = NULL;
     s->nloops = 0;
     sc_surface_free(s);
     *s = out;
+    return SC_OK;
+}
+
+int sc_surface_try_restrict(sc_surface *s, int dir, double a, double b)
+{
+    return surface_restrict(s, dir, a, b, 1);
+}
+
+void sc_surface_restrict(sc_surface *s, int dir, double a, double b)
+{
+    surface_restrict(s, dir, a, b, 0);
 }
 
 static void surface_refine_to_bezier(const sc_surface *s, int dir, sc_surface *out)

@@ -9,6 +9,20 @@
 
 void sc_scene_init(sc_scene *scene) { memset(scene, 0, sizeof *scene); }
 
+int sc_curve_try_alloc(sc_curve *c, int dim, int degree, int ncp)
+{
+    c->dim = dim;
+    c->degree = degree;
+    c->ncp = ncp;
+    c->knots = sc_try_alloc((size_t)(ncp + degree + 1), sizeof(double));
+    c->cp = c->knots ? sc_try_alloc((size_t)ncp * (size_t)(dim + 1), sizeof(double)) : NULL;
+    if (!c->cp) {
+        sc_curve_free(c);
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
+
 void sc_curve_alloc(sc_curve *c, int dim, int degree, int ncp)
 {
     c->dim = dim;
@@ -33,6 +47,27 @@ void sc_curve_copy(sc_curve *dst, const sc_curve *src)
 }
 
 static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+int sc_surface_try_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
+{
+    s->deg_u = deg_u;
+    s->deg_v = deg_v;
+    s->nu = nu;
+    s->nv = nv;
+    s->knots_u = sc_try_alloc((size_t)(nu + deg_u + 1), sizeof(double));
+    s->knots_v = sc_try_alloc((size_t)(nv + deg_v + 1), sizeof(double));
+    s->cp = sc_try_alloc((size_t)nu * (size_t)nv * 4, sizeof(double));
+    if (!s->knots_u || !s->knots_v || !s->cp) {
+        /* The surface keeps its loops, name and transform. */
+        free(s->knots_u);
+        free(s->knots_v);
+        free(s->cp);
+        s->knots_u = s->knots_v = s->cp = NULL;
+        s->nu = s->nv = 0;
+        return SC_FAIL;
+    }
+    return SC_OK;
+}
 
 void sc_surface_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv)
 {
@@ -93,9 +128,15 @@ void sc_scene_free(sc_scene *scene)
     sc_scene_init(scene);
 }
 
-sc_surface *sc_scene_add_surface(sc_scene *scene)
+/* The aborting and the checked form differ only in the allocation. */
+static sc_surface *add_surface(sc_scene *scene, int checked)
 {
-    scene->surfaces = sc_realloc(scene->surfaces, (size_t)scene->nsurfaces + 1, sizeof(sc_surface));
+    size_t n = (size_t)scene->nsurfaces + 1;
+    sc_surface *grown = checked ? sc_try_realloc(scene->surfaces, n, sizeof(sc_surface))
+                                : sc_realloc(scene->surfaces, n, sizeof(sc_surface));
+    if (!grown)
+        return NULL;
+    scene->surfaces = grown;
     sc_surface *s = &scene->surfaces[scene->nsurfaces];
     memset(s, 0, sizeof *s);
     memcpy(s->xform, identity, sizeof identity);
@@ -106,6 +147,10 @@ sc_surface *sc_scene_add_surface(sc_scene *scene)
     scene->nsurfaces++;
     return s;
 }
+
+sc_surface *sc_scene_add_surface(sc_scene *scene) { return add_surface(scene, 0); }
+
+sc_surface *sc_scene_try_add_surface(sc_scene *scene) { return add_surface(scene, 1); }
 
 void sc_scene_skip(sc_scene *scene, const char *type, const char *reason, int count)
 {

@@ -91,6 +91,12 @@ void sc_surface_free(sc_surface *s);
 void sc_curve_alloc(sc_curve *c, int dim, int degree, int ncp);
 void sc_curve_free(sc_curve *c);
 void sc_curve_copy(sc_curve *dst, const sc_curve *src);
+/* The same for sizes that come from a file: SC_FAIL (and nothing
+ * allocated) when the memory is not there, where the forms above abort;
+ * the reader reports it with its position (sc_fail_oom). */
+sc_surface *sc_scene_try_add_surface(sc_scene *scene);
+int sc_surface_try_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv);
+int sc_curve_try_alloc(sc_curve *c, int dim, int degree, int ncp);
 void sc_surface_copy(sc_surface *dst, const sc_surface *src);
 /* Adds (or increments) a skipped-record. */
 void sc_scene_skip(sc_scene *scene, const char *type, const char *reason, int count);
@@ -125,7 +131,9 @@ void sc_surface_bake_xform(sc_surface *s);
  * loop with a warning (the surface is kept) and is counted in
  * scene->dropped_loops. Warnings start with scene->source when it is set.
  * Curves outside the domain are not an error (real files have them slightly
- * outside). */
-void sc_scene_validate_loops(sc_scene *scene);
+ * outside). Fails only when memory runs out ("out of memory: N bytes for
+ * validating trim loop L of surface S", the file being scene->source); the
+ * scene can then still be freed. */
+int sc_scene_validate_loops(sc_scene *scene, sc_error *err);
 
 #endif

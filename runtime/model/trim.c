@@ -120,13 +120,21 @@ typedef struct raw_piece {
 typedef struct piece_list {
     raw_piece *items;
     int count, cap;
+    size_t failed; /* bytes that could not be allocated: the list stops growing */
 } piece_list;
 
 static raw_piece *piece_append(piece_list *list)
 {
     if (list->count == list->cap) {
-        list->cap = list->cap ? 2 * list->cap : 64;
-        list->items = sc_realloc(list->items, (size_t)list->cap, sizeof(raw_piece));
+        int cap = list->cap ? 2 * list->cap : 64;
+        raw_piece *grown = list->failed ? NULL
+                                        : sc_try_realloc(list->items, (size_t)cap, sizeof(raw_piece));
+        if (!grown) {
+            list->failed = (size_t)cap * sizeof(raw_piece);
+            return NULL;
+        }
+        list->items = grown;
+        list->cap = cap;
     }
     raw_piece *p = &list->items[list->count++];
     memset(p, 0, sizeof *p);
@@ -143,6 +151,8 @@ static void add_segment_pieces(piece_list *list, const double *cp, int p, int lo
     double consumed = 0.0; /* rest covers [consumed, 1] of the segment */
     for (int k = 0; k <= nroots; k++) {
         raw_piece *piece = piece_append(list);
+        if (!piece)
+            return;
         piece->degree = p;
         piece->loop = loop;
         if (k < nroots) {
@@ -190,6 +200,11 @@ static int prepare_loop(const sc_surface *s, int loop_index, piece_list *list, d
         }
         free(segments);
     }
+    if (list->failed) {
+        char what[160];
+        snprintf(what, sizeof what, "the trim pieces of surface '%s'", s->name);
+        return sc_fail_oom(err, NULL, 0, list->failed, 1, what);
+    }
     /* Consecutive pieces (cyclically) share their end point exactly. */
     int n = list->count - first;
     for (int k = 0; k < n; k++) {
@@ -213,7 +228,7 @@ static int bucket_of(const sc_trim *trim, double v)
     return (int)k;
 }
 
-static void build_buckets(sc_trim *trim)
+static int build_buckets(sc_trim *trim)
 {
     double v0 = INFINITY, v1 = -INFINITY;
     for (int k = 0; k < trim->npieces; k++) {
@@ -223,9 +238,12 @@ static void build_buckets(sc_trim *trim)
     trim->nbuckets = trim->npieces < 1 ? 1 : trim->npieces > 1024 ? 1024 : trim->npieces;
     trim->v0 = trim->npieces ? v0 : 0.0;
     trim->dv = trim->npieces && v1 > v0 ? (v1 - v0) / trim->nbuckets : 1.0;
-    trim->bucket_start = sc_alloc((size_t)trim->nbuckets + 1, sizeof(int));
+    if (!(trim->bucket_start = sc_try_alloc((size_t)trim->nbuckets + 1, sizeof(int))))
+        return SC_FAIL;
     for (int pass = 0; pass < 2; pass++) {
-        int *fill = pass ? sc_alloc((size_t)trim->nbuckets, sizeof(int)) : NULL;
+        int *fill = pass ? sc_try_alloc((size_t)trim->nbuckets, sizeof(int)) : NULL;
+        if (pass && !fill)
+            return SC_FAIL;
         for (int k = 0; k < trim->npieces; k++) {
             int b0 = bucket_of(trim, trim->pieces[k].v_lo);
             int b1 = bucket_of(trim, trim->pieces[k].v_hi);
@@ -240,10 +258,13 @@ static void build_buckets(sc_trim *trim)
             for (int b = 0; b < trim->nbuckets; b++)
                 trim->bucket_start[b + 1] += trim->bucket_start[b];
             trim->bucket_items =
-                sc_alloc((size_t)trim->bucket_start[trim->nbuckets] + 1, sizeof(int));
+                sc_try_alloc((size_t)trim->bucket_start[trim->nbuckets] + 1, sizeof(int));
+            if (!trim->bucket_items)
+                return SC_FAIL;
         }
         free(fill);
     }
+    return SC_OK;
 }
 
 int sc_trim_prepare(const sc_surface *s, sc_trim **out, sc_error *err)
@@ -265,7 +286,13 @@ int sc_trim_prepare(const sc_surface *s, sc_trim **out, sc_error *err)
     }
     sc_trim *trim = sc_alloc(1, sizeof *trim);
     trim->kept_without_crossings = !has_outer;
-    trim->pieces = sc_alloc((size_t)list.count, sizeof(sc_trim_piece));
+    trim->pieces = sc_try_alloc((size_t)list.count, sizeof(sc_trim_piece));
+    if (!trim->pieces) {
+        free(list.items);
+        free(trim);
+        return sc_fail_oom(err, NULL, 0, (size_t)list.count, sizeof(sc_trim_piece),
+                           "trim pieces");
+    }
     for (int k = 0; k < list.count; k++) {
         /* A horizontal piece keeps v_lo == v_hi, so its half-open range
          * holds no v and a ray along it never counts it; it stays in the
@@ -293,7 +320,11 @@ int sc_trim_prepare(const sc_surface *s, sc_trim **out, sc_error *err)
         }
     }
     free(list.items);
-    build_buckets(trim);
+    if (build_buckets(trim)) {
+        size_t pieces = (size_t)trim->npieces;
+        sc_trim_free(trim);
+        return sc_fail_oom(err, NULL, 0, pieces + 1024, 2 * sizeof(int), "trim buckets");
+    }
     *out = trim;
     return SC_OK;
 }

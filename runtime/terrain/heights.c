@@ -75,15 +75,24 @@ void sc_heights_padded(const sc_heights *in, int pad, sc_heights *out)
     *out = h;
 }
 
-/* Builds the grid from values read top row first. */
-static void from_rows(const double *v, int w, int hgt, double spacing, double scale,
-                      sc_heights *out)
+/* Builds the grid from values read top row first; fails (v freed) when
+ * memory runs out. */
+static int from_rows(double *v, int w, int hgt, double spacing, double scale, sc_heights *out,
+                     const char *path, sc_error *err)
 {
-    heights_alloc(out, w, hgt, 0);
+    memset(out, 0, sizeof *out);
+    out->nx = w; out->ny = hgt;
+    if (!(out->z = sc_try_alloc((size_t)w * (size_t)hgt, sizeof *out->z))) {
+        free(v);
+        memset(out, 0, sizeof *out);
+        return sc_fail_oom(err, path, 0, (size_t)w * (size_t)hgt, sizeof *out->z, "the heights");
+    }
     out->dx = out->dy = spacing;
     for (int r = 0; r < hgt; r++)
         for (int c = 0; c < w; c++)
             *heights_ref(out, c, hgt - 1 - r) = v[(size_t)r * w + c] * scale;
+    free(v);
+    return SC_OK;
 }
 
 /* PGM header and P2 tokens: skips white space and '#' comments, counting
@@ -157,7 +166,9 @@ static int read_pgm(const char *path, const char *buf, size_t len, double spacin
         return sc_fail(err, path, line, "PGM has %zu bytes after its header, too few for the "
                        "header's %ld x %ld samples", (size_t)(end - p), w, h);
     }
-    double *v = sc_alloc(count, sizeof *v);
+    double *v = sc_try_alloc(count, sizeof *v);
+    if (!v)
+        return sc_fail_oom(err, path, line, count, sizeof *v, "the PGM's samples");
     double inv = 1.0 / (double)maxval;
     if (binary) {
         const unsigned char *u = (const unsigned char *)p;
@@ -199,9 +210,7 @@ static int read_pgm(const char *path, const char *buf, size_t len, double spacin
             last = line;
         }
     }
-    from_rows(v, (int)w, (int)h, spacing, zscale, out);
-    free(v);
-    return SC_OK;
+    return from_rows(v, (int)w, (int)h, spacing, zscale, out, path, err);
 }
 
 static int read_csv(const char *path, char *buf, size_t len, double spacing, double zscale,
@@ -213,7 +222,9 @@ static int read_csv(const char *path, char *buf, size_t len, double spacing, dou
         return sc_fail(err, path, line, "NUL byte in a CSV file");
     }
     size_t cap = 1024, n = 0;
-    double *v = sc_alloc(cap, sizeof *v);
+    double *v = sc_try_alloc(cap, sizeof *v);
+    if (!v)
+        return sc_fail_oom(err, path, 1, cap, sizeof *v, "the heights");
     long width = -1, rows = 0;
     int line = 0, first_line = 0;
     char *save = NULL;
@@ -248,7 +259,15 @@ static int read_csv(const char *path, char *buf, size_t len, double spacing, dou
                 return sc_fail(err, path, line, "more than the limit of %d heights "
                                "(docs/limits.md)", SC_MAX_HEIGHT_SAMPLES);
             }
-            if (n == cap) v = sc_realloc(v, cap *= 2, sizeof *v);
+            if (n == cap) {
+                double *grown = sc_try_realloc(v, cap * 2, sizeof *v);
+                if (!grown) {
+                    free(v);
+                    return sc_fail_oom(err, path, line, cap * 2, sizeof *v, "the heights");
+                }
+                v = grown;
+                cap *= 2;
+            }
             v[n++] = x;
             count++;
             if (*t == ',') t++;
@@ -275,9 +294,7 @@ static int read_csv(const char *path, char *buf, size_t len, double spacing, dou
         return sc_fail(err, path, line, "%ld x %ld heights: a terrain needs at least 2 x 2",
                        width, rows);
     }
-    from_rows(v, (int)width, (int)rows, spacing, zscale, out);
-    free(v);
-    return SC_OK;
+    return from_rows(v, (int)width, (int)rows, spacing, zscale, out, path, err);
 }
 
 int sc_heights_parse(char *data, size_t len, const char *name, double spacing, double zscale,
