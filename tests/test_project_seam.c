@@ -69,7 +69,7 @@ TEST(project_sphere_window_across_seam)
     s->loops[0].curves = out;
     s->loops[0].ncurves = nout;
     sc_surface_unwrap_seams(s);
-    sc_scene_validate_loops(&scene);
+    CHECK_INT(sc_scene_validate_loops(&scene, NULL), SC_OK);
     CHECK_INT(scene.dropped_loops, 0);
     CHECK_INT(s->nloops, 1);
     sc_trim *trim = NULL;
