@@ -73,6 +73,14 @@
     /* unit ray to the nearest surfaces drawn so far (ert1/ert2 keys) */             \
     X(NEAREST_T, 4, "sc_nearest_t", "sampler2D", 1)
 
+/* Shader storage: the fragment programs count, in one std430 block at
+ * binding SCG_BUFFER_COUNTERS, the intersections they run (fragments past
+ * the early-termination test), with an atomic add on the GPU: the figure
+ * `rays_per_covered_pixel` divides it by the pixels that hit a surface. */
+#define SCG_BUFFER_COUNTERS 0
+#define SCG_COUNTERS_BLOCK "sc_counters"
+#define SCG_COUNTER_INTERSECTIONS "sc_intersections"
+
 /* Fragment outputs = the render target's colour attachments, declared when
  * the key asks for their output: X(ID, location, GLSL name, GLSL type, the
  * key's output (SCG_OUTPUT_<it>), GL internal format (GL_<it>), the value

@@ -264,6 +264,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .program_switches = stats.program_switches,
         .culled_hulls = stats.culled_hulls,
         .readbacks = stats.readbacks,
+        .intersections = stats.intersections,
     };
     if (!sc_scene_view_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi))
         sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);
