@@ -166,6 +166,43 @@ TEST(ert_counts_intersections)
     sc_scene_free(&scene);
 }
 
+/* A camera turned away from the stack: every hull lies outside the view,
+ * so nothing is drawn, nothing read back and no intersection runs, in every
+ * mode; and a camera looking at it draws it (the test is not vacuous). */
+TEST(ert_turned_away_draws_nothing)
+{
+    const char *why;
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(scene_path("stack_4.obj"), &scene, &err), SC_OK);
+    sc_camera away = stack_camera;
+    away.target[2] = 2 * away.eye[2];  /* looking up +z, the stack behind */
+    for (int ert = SC_TERMINATION_NONE; ert <= SC_TERMINATION_MANUAL_BOTH; ert++) {
+        sc_render_desc desc = {.ert = (sc_ray_termination)ert};
+        for (int look = 0; look < 2; look++) {
+            sc_aov aov;
+            sc_render_stats stats;
+            CHECK(render(ctx, &scene, &desc, look ? &stack_camera : &away, &aov, &stats));
+            long covered = 0;
+            for (int p = 0; p < aov.width * aov.height; p++)
+                covered += aov.surface[p] >= 0;
+            if (look) {
+                CHECK(covered > 0 && stats.draw_calls > 0 && stats.intersections >= covered);
+            } else {
+                CHECK_INT(covered, 0);
+                CHECK_INT(stats.draw_calls, 0);
+                CHECK_INT(stats.readbacks, 0);
+                CHECK(stats.intersections == 0);
+            }
+            sc_aov_free(&aov);
+        }
+    }
+    sc_scene_free(&scene);
+}
+
 /* The programs of a batch read only what the batches before it wrote (GL
  * leaves reading what the same draw writes undefined): what they read is
  * left in sc_nearest_t after the frame. With one batch that is the cleared
