@@ -338,14 +338,16 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
 
     float bg = background_linear();
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
+    unsigned uncleared = 0;  /* read only at hits: 32 of the 56 bytes a pixel */
     for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
         const scg_frag_out_info *o = &scg_frag_outs[i];
         const float background[4] = {bg, bg, bg, 1};
         memcpy(clear[o->location], o->clear_background ? background : o->clear, sizeof clear[0]);
+        uncleared |= (unsigned)o->not_cleared << o->location;
     }
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
-    sc_gl_target_begin(gl, &r->target, clear);
+    sc_gl_target_begin(gl, &r->target, clear, uncleared);
     int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
     gl->Disable(GL_FRAMEBUFFER_SRGB);
     gl->Finish();
