@@ -34,9 +34,10 @@ const scg_slot_info scg_textures[] = {
 #undef X
 };
 
-/* The two forms of a clear value, as the fields after key_output and miss. */
-#define SCG_CLEAR_BACKGROUND 1, {0, 0, 0, 0}
-#define SCG_CLEAR_VALUE(r, g, b, a) 0, {r, g, b, a}
+/* The three forms of a clear value, as the fields after key_output and miss. */
+#define SCG_CLEAR_BACKGROUND 1, 0, {0, 0, 0, 0}
+#define SCG_CLEAR_VALUE(r, g, b, a) 0, 0, {r, g, b, a}
+#define SCG_CLEAR_NONE 0, 1, {0, 0, 0, 0}
 
 const scg_frag_out_info scg_frag_outs[] = {
 #define X(ID, location, name, type, output, format, miss, clear) \

@@ -73,12 +73,21 @@
     /* unit ray to the nearest surfaces drawn so far (ert1/ert2 keys) */             \
     X(NEAREST_T, 4, "sc_nearest_t", "sampler2D", 1)
 
+/* Shader storage: the fragment programs count, in one std430 block at
+ * binding SCG_BUFFER_COUNTERS, the intersections they run (fragments past
+ * the early-termination test), with an atomic add on the GPU: the figure
+ * `rays_per_covered_pixel` divides it by the pixels that hit a surface. */
+#define SCG_BUFFER_COUNTERS 0
+#define SCG_COUNTERS_BLOCK "sc_counters"
+#define SCG_COUNTER_INTERSECTIONS "sc_intersections"
+
 /* Fragment outputs = the render target's colour attachments, declared when
  * the key asks for their output: X(ID, location, GLSL name, GLSL type, the
  * key's output (SCG_OUTPUT_<it>), GL internal format (GL_<it>), the value
  * written where the hull view draws a miss (NULL: the template writes it),
- * the clear value: BACKGROUND (the renderer's background colour) or
- * VALUE(r, g, b, a)). */
+ * the clear value: BACKGROUND (the renderer's background colour),
+ * VALUE(r, g, b, a), or NONE: not cleared, because every reader reads it
+ * only where the surface id marks a hit, which writes it). */
 #define SCG_FRAG_OUTS(X)                                                             \
     /* headlight diffuse, linear RGB */                                              \
     X(COLOUR, 0, "sc_colour", "vec4", SHADE, SRGB8_ALPHA8, "vec4(0.0)", BACKGROUND)  \
@@ -88,9 +97,9 @@
     /* the nearest distance so far), iterations */                                   \
     X(UVT, 2, "sc_aov_uvt", "vec4", AOV, RGBA32F, "vec4(0.0)", VALUE(0, 0, 3.0e38f, 0)) \
     /* world hit point, 1 */                                                         \
-    X(POINT, 3, "sc_aov_point", "vec4", AOV, RGBA32F, "vec4(0.0)", VALUE(0, 0, 0, 0)) \
+    X(POINT, 3, "sc_aov_point", "vec4", AOV, RGBA32F, "vec4(0.0)", NONE)             \
     /* world unit normal facing the viewer, 0 */                                     \
-    X(NORMAL, 4, "sc_aov_normal", "vec4", AOV, RGBA32F, "vec4(0.0)", VALUE(0, 0, 0, 0)) \
+    X(NORMAL, 4, "sc_aov_normal", "vec4", AOV, RGBA32F, "vec4(0.0)", NONE)            \
     /* debug views: iterations, (u, v), the hulls */                                 \
     X(ITERS, 5, "sc_view_iters", "vec4", ITERS, RGBA8, "vec4(0.0)", VALUE(0, 0, 0, 0)) \
     X(UV, 6, "sc_view_uv", "vec4", UVVIEW, RGBA8, "vec4(0.0)", VALUE(0, 0, 0, 0))    \
@@ -156,6 +165,7 @@ typedef struct scg_frag_out_info {
     unsigned key_output;   /* the SCG_OUTPUT_* bit that declares it */
     const char *miss;      /* GLSL value on a hull-view miss; NULL: none */
     int clear_background;  /* cleared to the background colour, else to clear */
+    int not_cleared;       /* left as the last frame wrote it (NONE) */
     float clear[4];
 } scg_frag_out_info;
 

@@ -251,6 +251,9 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         return SC_FAIL;
     if (!info)
         return sc_api_invalid(err, "info", PROBLEM_NULL, NULL);
+    /* The intersection count is read from the renderer's GL buffer. */
+    if (sc_api_make_current(r->context, err) != SC_OK)
+        return SC_FAIL;
     sc_render_stats stats;
     sc_renderer_stats(r->renderer, &stats);
     *info = (sc_renderer_info){
@@ -264,6 +267,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .program_switches = stats.program_switches,
         .culled_hulls = stats.culled_hulls,
         .readbacks = stats.readbacks,
+        .intersections = stats.intersections,
     };
     if (!sc_scene_view_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi))
         sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);

@@ -226,3 +226,26 @@ TEST(cli_render_program_lines)
     CHECK_INT(programs, keys);
     CHECK(programs >= 6);
 }
+
+/* render's stats line keeps its fields and appends the GPU's count of
+ * intersections run and its ratio to the covered pixels: every covered
+ * pixel ran one at least. */
+TEST(cli_render_counts_intersections)
+{
+    char cmd[2048], *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/count.png --size 64x64", test_cli,
+             test_tmpdir());
+    CHECK_INT(test_run(cmd, &out, NULL), 0);
+    const char *at = out ? strstr(out, " readbacks=") : NULL;
+    CHECK(at != NULL);
+    int readbacks = -1;
+    long long count = -1;
+    double ratio = -1;
+    CHECK_INT(at ? sscanf(at, " readbacks=%d intersections=%lld rays_per_covered_pixel=%lf",
+                          &readbacks, &count, &ratio)
+                 : 0,
+              3);
+    CHECK(count > 0);
+    CHECK(ratio >= 1.0);
+    free(out);
+}

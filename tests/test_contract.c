@@ -108,6 +108,15 @@ static int check_stage(const char *glsl, int fragment, unsigned *frag_outs, int 
         line += len + (end != NULL);
         if (strncmp(buf, "layout(", 7) || !strncmp(buf, "layout(depth_greater)", 21))
             continue;
+        /* The counters' block: fragment stage only, its binding and names. */
+        int binding = -1;
+        char block[64] = "";
+        if (sscanf(buf, "layout(std430, binding = %d) buffer %63[a-z_0-9] {", &binding, block) == 2) {
+            if (fragment && binding == SCG_BUFFER_COUNTERS && !strcmp(block, SCG_COUNTERS_BLOCK))
+                continue;
+            fprintf(stderr, "  %s: not in the contract: %s\n", stage, buf);
+            return 0;
+        }
         declaration d;
         int ok = parse_declaration(buf, &d);
         if (ok && d.binding >= 0)

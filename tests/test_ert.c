@@ -129,6 +129,80 @@ TEST(ert_modes_stack_same_image)
     CHECK(ok);
 }
 
+/* The programs count the intersections they run on the GPU. Every covered
+ * pixel ran one at least; without early termination the hulls of all 16
+ * layers overlap the centre of the view, so the count exceeds the covered
+ * pixels several times; culling hulls behind the first layer (one hull per
+ * batch, front to back) runs fewer, and never fewer than the covered pixels. */
+TEST(ert_counts_intersections)
+{
+    const char *why;
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
+    sc_render_desc descs[2] = {{.ert = SC_TERMINATION_NONE},
+                               {.ert = SC_TERMINATION_MANUAL, .batch_hulls = 1,
+                                .order = SC_HULL_ORDER_FRONT_TO_BACK}};
+    long long counted[2] = {0};
+    long covered[2] = {0};
+    for (int i = 0; i < 2; i++) {
+        sc_aov aov;
+        sc_render_stats stats;
+        CHECK(render(ctx, &scene, &descs[i], &stack_camera, &aov, &stats));
+        for (int p = 0; p < aov.width * aov.height; p++)
+            covered[i] += aov.surface[p] >= 0;
+        counted[i] = stats.intersections;
+        CHECK(i == 0 || stats.culled_hulls > 0);
+        sc_aov_free(&aov);
+    }
+    CHECK_INT(covered[0], 128 * 128);
+    CHECK_INT(covered[1], covered[0]);
+    CHECK(counted[0] >= 4 * (long long)covered[0]);
+    CHECK(counted[1] >= covered[1]);
+    CHECK(counted[1] < counted[0]);
+    sc_scene_free(&scene);
+}
+
+/* A camera turned away from the stack: every hull lies outside the view,
+ * so nothing is drawn, nothing read back and no intersection runs, in every
+ * mode; and a camera looking at it draws it (the test is not vacuous). */
+TEST(ert_turned_away_draws_nothing)
+{
+    const char *why;
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene(scene_path("stack_4.obj"), &scene, &err), SC_OK);
+    sc_camera away = stack_camera;
+    away.target[2] = 2 * away.eye[2];  /* looking up +z, the stack behind */
+    for (int ert = SC_TERMINATION_NONE; ert <= SC_TERMINATION_MANUAL_BOTH; ert++) {
+        sc_render_desc desc = {.ert = (sc_ray_termination)ert};
+        for (int look = 0; look < 2; look++) {
+            sc_aov aov;
+            sc_render_stats stats;
+            CHECK(render(ctx, &scene, &desc, look ? &stack_camera : &away, &aov, &stats));
+            long covered = 0;
+            for (int p = 0; p < aov.width * aov.height; p++)
+                covered += aov.surface[p] >= 0;
+            if (look) {
+                CHECK(covered > 0 && stats.draw_calls > 0 && stats.intersections >= covered);
+            } else {
+                CHECK_INT(covered, 0);
+                CHECK_INT(stats.draw_calls, 0);
+                CHECK_INT(stats.readbacks, 0);
+                CHECK(stats.intersections == 0);
+            }
+            sc_aov_free(&aov);
+        }
+    }
+    sc_scene_free(&scene);
+}
+
 /* The programs of a batch read only what the batches before it wrote (GL
  * leaves reading what the same draw writes undefined): what they read is
  * left in sc_nearest_t after the frame. With one batch that is the cleared

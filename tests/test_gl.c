@@ -149,7 +149,7 @@ static void triangle_check(sc_backend backend)
     gl->CreateVertexArrays(1, &vao);
     const float clear[SC_GL_TARGET_MAX_COLOURS][4] = {
         {0, 0, 1, 1}, {0}, {-1, -1, -1, -1}, {-1, 0, 0, 0}};
-    sc_gl_target_begin(gl, &target, clear);
+    sc_gl_target_begin(gl, &target, clear, 0);
     gl->Enable(GL_DEPTH_TEST);
     gl->UseProgram(prog);
     gl->BindVertexArray(vao);

@@ -27,6 +27,7 @@ static const char usage[] =
     "  bench variant=specialized|generic frame_ms=T mpix_s=M covered=N iters_mean=I\n"
     "        gpu_bytes=B programs=P hulls=H triangles=T compile_ms=C compile_ms_per_program=C\n"
     "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
+    "        intersections=N rays_per_covered_pixel=X\n"
     "and the ratio of the two frame times. frame_ms is the median of the timed\n"
     "frames after a warm-up frame; mpix_s counts covered pixels only.\n"
     "\n"

@@ -58,7 +58,10 @@ static const char usage[] =
     "\n"
     "stdout: stats programs=N hulls=N triangles=N gpu_bytes=N compile_ms=T frame_ms=T\n"
     "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
-    "        (frame_ms: median of the timed frames; compile_ms: generating,\n"
+    "        intersections=N rays_per_covered_pixel=X\n"
+    "        (intersections: fragment programs that ran the intersection in the\n"
+    "        last frame, counted on the GPU, over the pixels that hit a surface;\n"
+    "        frame_ms: median of the timed frames; compile_ms: generating,\n"
     "        validating, compiling and linking the programs, plus the warm-up\n"
     "        frame's excess over the median, where llvmpipe finishes compiling)\n"
     "        and with --ref: accuracy coverage_pct=... fail_pct=... (see diff)\n"
@@ -263,11 +266,21 @@ int cmd_render(int argc, char **argv)
         cli_report(&err);
         goto done;
     }
+    sc_frame_info frame_info;
+    if (sc_query_frame_info(frame, &frame_info, &err) != SC_OK) {
+        cli_report(&err);
+        goto done;
+    }
+    long covered = 0;
+    for (long p = 0; p < (long)frame_info.width * frame_info.height; p++)
+        covered += frame_info.surface[p] >= 0;
     double compile_ms = stats.compile_ms + (warm_up > frame_ms ? warm_up - frame_ms : 0);
     printf("stats programs=%d hulls=%d triangles=%d gpu_bytes=%zu compile_ms=%.1f "
-           "frame_ms=%.2f draw_calls=%d program_switches=%d culled_hulls=%d readbacks=%d\n",
+           "frame_ms=%.2f draw_calls=%d program_switches=%d culled_hulls=%d readbacks=%d "
+           "intersections=%lld rays_per_covered_pixel=%.3f\n",
            stats.programs, stats.hulls, stats.triangles, stats.gpu_bytes, compile_ms, frame_ms,
-           stats.draw_calls, stats.program_switches, stats.culled_hulls, stats.readbacks);
+           stats.draw_calls, stats.program_switches, stats.culled_hulls, stats.readbacks,
+           stats.intersections, covered ? (double)stats.intersections / (double)covered : 0.0);
     fflush(stdout);
     if (with_ref) {
         double ref_t0 = sc_now();

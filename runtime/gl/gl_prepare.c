@@ -400,6 +400,8 @@ void sc_renderer_destroy(sc_renderer *r)
         gl->DeleteTextures(1, &r->nearest_texture);
     if (r->app_nearest)
         gl->DeleteTextures(1, &r->app_nearest);
+    if (r->counter_buffer)
+        gl->DeleteBuffers(1, &r->counter_buffer);
     sc_gl_target_destroy(gl, &r->target);
     sc_gpu_data_free(gl, &r->data);
     GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};
@@ -495,6 +497,12 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->program_switches = r->program_switches;
     stats->culled_hulls = r->culled;
     stats->readbacks = r->readbacks;
+    stats->intersections = 0;
+    if (r->counter_buffer) {
+        GLuint count = 0;
+        r->gl->GetNamedBufferSubData(r->counter_buffer, 0, sizeof count, &count);
+        stats->intersections = count;
+    }
 }
 
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface)

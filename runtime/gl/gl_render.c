@@ -273,6 +273,30 @@ static int hull_hidden(const sc_renderer *r, const float vp[16], const double fw
     return 1;
 }
 
+/* Whether hull k's box lies wholly outside one plane of the view frustum
+ * (vp as in hull_hidden): then none of its fragments is drawn, and it is
+ * left out of the frame before any batch, so that a view with nothing in it
+ * draws nothing and reads nothing back. Behind the eye counts as outside
+ * (w ≤ 0 at every corner, which hull_hidden cannot bound). */
+static int hull_outside(const sc_subpatch *s, const float vp[16], const double eye[3])
+{
+    unsigned all_out = 0x7f;
+    for (int c = 0; c < 8 && all_out; c++) {
+        double d[3] = {(c & 1 ? s->hi[0] : s->lo[0]) - eye[0],
+                       (c & 2 ? s->hi[1] : s->lo[1]) - eye[1],
+                       (c & 4 ? s->hi[2] : s->lo[2]) - eye[2]};
+        double clip[4];
+        for (int row = 0; row < 4; row++)
+            clip[row] = vp[row] * d[0] + vp[4 + row] * d[1] + vp[8 + row] * d[2] + vp[12 + row];
+        double w = clip[3];
+        unsigned out = (clip[0] < -w) | (clip[0] > w) << 1 | (clip[1] < -w) << 2 |
+                       (clip[1] > w) << 3 | (clip[2] < -w) << 4 | (clip[2] > w) << 5 |
+                       (w <= 0) << 6;
+        all_out &= out;
+    }
+    return all_out != 0;
+}
+
 /* sc_nearest_t for a target of the current size. */
 static int make_nearest_texture(sc_renderer *r, sc_error *err)
 {
@@ -315,14 +339,16 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
 
     float bg = background_linear();
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
+    unsigned uncleared = 0;  /* read only at hits: 32 of the 56 bytes a pixel */
     for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
         const scg_frag_out_info *o = &scg_frag_outs[i];
         const float background[4] = {bg, bg, bg, 1};
         memcpy(clear[o->location], o->clear_background ? background : o->clear, sizeof clear[0]);
+        uncleared |= (unsigned)o->not_cleared << o->location;
     }
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
-    sc_gl_target_begin(gl, &r->target, clear);
+    sc_gl_target_begin(gl, &r->target, clear, uncleared);
     int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
     if (status == SC_OK && r->desc.deferred && r->scene->terrain &&
         r->desc.view == SC_SHOW_SHADE)
@@ -366,10 +392,13 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
      * order of the policy. */
     const sc_hulls *h = &r->hulls;
     int ninside = 0, n = 0;
+    r->outside = 0;
     for (int k = 0; k < h->count; k++) {
         double d = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, eye_world);
         if (d == 0 && sc_hull_contains(h, k, eye_world))
             r->inside[ninside++] = k;
+        else if (hull_outside(&h->subpatches[k], vp, eye_world))
+            r->outside++;
         else
             r->items[n++] = (sort_item){.distance = d, .hull = k};
     }
@@ -393,6 +422,14 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     gl->BindVertexArray(r->vertex_array);
     sc_gpu_data_bind(gl, &r->data);
     gl->BindTextureUnit(SCG_UNIT_COLOURS, r->colour_texture);
+    /* The intersections of this frame, counted from zero. */
+    if (!r->counter_buffer) {
+        gl->CreateBuffers(1, &r->counter_buffer);
+        gl->NamedBufferData(r->counter_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_READ);
+    }
+    static const GLuint zero = 0;
+    gl->ClearNamedBufferData(r->counter_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, SCG_BUFFER_COUNTERS, r->counter_buffer);
     if (manual) {
         static const float far = 3.0e38f;
         gl->ClearTexImage(r->nearest_texture, 0, GL_RED, GL_FLOAT, &far);

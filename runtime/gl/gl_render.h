@@ -81,6 +81,9 @@ typedef struct sc_render_stats {
     int readbacks;          /* reads of the nearest distances so far (manual
                                modes), each also refreshing the texture the
                                programs read them from */
+    long long intersections; /* fragment programs that ran the intersection
+                               (past the early-termination test), counted on
+                               the GPU by an atomic add */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;

@@ -118,6 +118,10 @@ struct sc_renderer {
     GLuint nearest_texture;
     sc_camera camera;        /* of the last frame */
     int draw_calls, program_switches, culled, readbacks;  /* of the last frame */
+    int outside;             /* of the last frame: hulls outside the view */
+    /* The programs' count of intersections run (SCG_BUFFER_COUNTERS), zeroed
+     * at the start of each frame and read only when asked for. */
+    GLuint counter_buffer;
     double compile_ms;
     int manhattan;           /* a terrain drawn in Manhattan sets: its order
                                 was left to the default */

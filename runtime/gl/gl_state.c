@@ -5,6 +5,8 @@
 
 #include <string.h>
 
+#include "shader_contract.h"
+
 static GLboolean enabled(const sc_gl *gl, GLenum cap) { return gl->IsEnabled(cap); }
 
 static void set_enabled(const sc_gl *gl, GLenum cap, GLboolean on)
@@ -39,6 +41,9 @@ void sc_gl_state_save(const sc_gl *gl, sc_gl_state *s)
     gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_framebuffer);
     gl->GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_framebuffer);
     gl->GetIntegerv(GL_VIEWPORT, s->viewport);
+    gl->GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_BINDING, SCG_BUFFER_COUNTERS, &s->counters_buffer);
+    gl->GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, SCG_BUFFER_COUNTERS, &s->counters_start);
+    gl->GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, SCG_BUFFER_COUNTERS, &s->counters_size);
     gl->GetIntegerv(GL_PACK_ALIGNMENT, &s->pack_alignment);
     gl->GetIntegerv(GL_UNPACK_ALIGNMENT, &s->unpack_alignment);
     if (s->draw_framebuffer) {
@@ -84,6 +89,14 @@ void sc_gl_state_restore(const sc_gl *gl, const sc_gl_state *s)
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_framebuffer);
     gl->BindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_framebuffer);
     gl->Viewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    /* A size of 0 is a whole-buffer binding (or none). */
+    if (s->counters_size > 0)
+        gl->BindBufferRange(GL_SHADER_STORAGE_BUFFER, SCG_BUFFER_COUNTERS,
+                            (GLuint)s->counters_buffer, (GLintptr)s->counters_start,
+                            (GLsizeiptr)s->counters_size);
+    else
+        gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, SCG_BUFFER_COUNTERS,
+                           (GLuint)s->counters_buffer);
     gl->PixelStorei(GL_PACK_ALIGNMENT, s->pack_alignment);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, s->unpack_alignment);
     if (s->ndraw_buffers) {

@@ -19,6 +19,8 @@ typedef struct sc_gl_state {
     GLint pack_alignment, unpack_alignment;
     int ndraw_buffers;                     /* of a bound framebuffer object */
     GLint draw_buffers[SC_GL_STATE_DRAW_BUFFERS];
+    /* the shader storage binding the programs count in, and its range */
+    GLint64 counters_buffer, counters_start, counters_size;
 } sc_gl_state;
 
 void sc_gl_state_save(const sc_gl *gl, sc_gl_state *s);

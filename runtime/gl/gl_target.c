@@ -90,12 +90,12 @@ void sc_gl_target_destroy(const sc_gl *gl, sc_gl_target *target)
 }
 
 void sc_gl_target_begin(const sc_gl *gl, const sc_gl_target *target,
-                        const float clear[SC_GL_TARGET_MAX_COLOURS][4])
+                        const float clear[SC_GL_TARGET_MAX_COLOURS][4], unsigned uncleared)
 {
     gl->BindFramebuffer(GL_FRAMEBUFFER, target->framebuffer);
     gl->Viewport(0, 0, target->width, target->height);
     for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++) {
-        if (!target->colour[i])
+        if (!target->colour[i] || (uncleared >> i & 1))
             continue;
         if (is_integer_format(target->formats[i])) {
             GLint value[4] = {(GLint)clear[i][0], (GLint)clear[i][1], (GLint)clear[i][2],

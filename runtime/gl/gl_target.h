@@ -32,9 +32,10 @@ int sc_gl_target_create(const sc_gl *gl, const sc_gl_target_desc *desc,
                         sc_gl_target *target, sc_error *err);
 void sc_gl_target_destroy(const sc_gl *gl, sc_gl_target *target);
 /* Binds the framebuffer, sets the viewport, clears attachment i to clear[i]
- * (integer attachments to its values truncated) and depth to 1. */
+ * (integer attachments to its values truncated) unless bit i of `uncleared`
+ * is set, and depth to 1. */
 void sc_gl_target_begin(const sc_gl *gl, const sc_gl_target *target,
-                        const float clear[SC_GL_TARGET_MAX_COLOURS][4]);
+                        const float clear[SC_GL_TARGET_MAX_COLOURS][4], unsigned uncleared);
 /* Attachment i as width × height pixels of `format`/`type` (pixel_bytes
  * each), row 0 at the top. */
 int sc_gl_target_read(const sc_gl *gl, const sc_gl_target *target, int attachment,

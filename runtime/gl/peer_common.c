@@ -170,13 +170,15 @@ int sc_peer_begin(sc_peer *p, const sc_camera *cam, float vp[16], sc_error *err)
         }
     float bg = (float)pow((0.2 + 0.055) / 1.055, 2.4);
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
+    unsigned uncleared = 0;  /* read only at hits: 32 of the 56 bytes a pixel */
     for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
         const scg_frag_out_info *o = &scg_frag_outs[i];
         const float background[4] = {bg, bg, bg, 1};
         memcpy(clear[o->location], o->clear_background ? background : o->clear, sizeof clear[0]);
+        uncleared |= (unsigned)o->not_cleared << o->location;
     }
     gl->Enable(GL_FRAMEBUFFER_SRGB);
-    sc_gl_target_begin(gl, &p->target, clear);
+    sc_gl_target_begin(gl, &p->target, clear, uncleared);
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     /* Open surfaces: both sides are seen. */

@@ -524,6 +524,8 @@ typedef struct sc_renderer_info {
                                   points of untrimmed surfaces, the kept
                                   region of trimmed ones (a packed
                                   renderer's: the packed scene's) */
+    long long intersections;   /* of the last frame: fragment programs that
+                                  ran the intersection, counted on the GPU */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);

@@ -33,6 +33,10 @@ layout(location = 1) out int sc_aov_surface;
 layout(location = 2) out vec4 sc_aov_uvt;
 layout(location = 3) out vec4 sc_aov_point;
 layout(location = 4) out vec4 sc_aov_normal;
+// Intersections run, counted by the runtime per frame.
+layout(std430, binding = 0) buffer sc_counters {
+    uint sc_intersections;
+};
 
 // The intersection, printed from the optimised IR (219 instructions):
 // one statement per computed value, named hint_N after IR value N.
@@ -208,6 +212,7 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
 
 void main()
 {
+    atomicAdd(sc_intersections, 1u);
     bool hit;
     vec2 uv;
     float t;

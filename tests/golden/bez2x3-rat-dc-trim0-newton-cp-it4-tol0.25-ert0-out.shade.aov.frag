@@ -36,6 +36,10 @@ layout(location = 1) out int sc_aov_surface;
 layout(location = 2) out vec4 sc_aov_uvt;
 layout(location = 3) out vec4 sc_aov_point;
 layout(location = 4) out vec4 sc_aov_normal;
+// Intersections run, counted by the runtime per frame.
+layout(std430, binding = 0) buffer sc_counters {
+    uint sc_intersections;
+};
 
 // The intersection, printed from the optimised IR (1044 instructions):
 // one statement per computed value, named hint_N after IR value N.
@@ -895,6 +899,7 @@ vec3 sc_shade_headlight(vec3 base_colour, vec3 facing_normal, vec3 to_eye)
 
 void main()
 {
+    atomicAdd(sc_intersections, 1u);
     bool hit;
     vec2 uv;
     float t;
