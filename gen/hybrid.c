@@ -46,6 +46,7 @@
 #define HYBRID_RESTARTS_LARGE 21
 #define HYBRID_LARGE_PIXELS 256.0f
 #define HYBRID_TRIMMED_RESTARTS 1
+#define HYBRID_CUT_FACING 0.2f
 
 /* From the sub-patch's middle (`mid`), Newton may converge to a farther
  * crossing of a sub-patch that folds away from the ray near a silhouette,
@@ -169,9 +170,9 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_name(b, NULL);
     bool seek = c->key->start == SC_START_MID;
     scg_value best_uv_var = 0, best_depth_var = 0, best_found_var = 0, seeking_var = 0;
+    scg_name(b, "facing");
+    c->facing_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, 1.0f));
     if (seek) {
-        scg_name(b, "facing");
-        c->facing_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, 1.0f));
         scg_name(b, "depth");
         c->depth_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, 0.0f));
         scg_name(b, "best_uv");
@@ -195,13 +196,27 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_value accepted = scg_and(b, converged, in_sub);
     scg_value kept = scg_isect_kept(c, accepted, uv);
     /* A crossing the trim curves cut away leaves one restart (from the
-     * sub-patch's middle) at most: a second, kept crossing in the same
+     * sub-patch's middle) at most, and none where the ray meets it at
+     * |cos| above HYBRID_CUT_FACING: a second, kept crossing in the same
      * sub-patch is rare, and rays through the holes of trimmed models are
      * many. */
     scg_value cut_away = scg_and(b, accepted, scg_not(b, kept));
     scg_value allowed = scg_load(b, restarts_var);
-    scg_value cap = scg_const_i(b, HYBRID_TRIMMED_RESTARTS);
+    scg_value facing = scg_load(b, c->facing_var);
+    scg_value steep = scg_lt(b, scg_const_f(b, HYBRID_CUT_FACING), facing);
+    scg_value cap = scg_select(b, steep, scg_const_i(b, 0), scg_const_i(b, HYBRID_TRIMMED_RESTARTS));
     scg_value lower = scg_and(b, cut_away, scg_lt(b, cap, allowed));
+    /* So does a crossing on a neighbouring sub-patch of the record met at
+     * |cos| above HYBRID_CUT_FACING: that sub-patch's hull draws it, and
+     * this one may hold a nearer crossing only where the record turns
+     * back towards the ray. Rays through the hull's overhang beyond its
+     * sub-patch, which meet the neighbour, ran every restart before. */
+    scg_value on_record = scg_isect_inside(b, uv, c->rec_lo, c->rec_hi);
+    scg_value elsewhere = scg_and(b, converged, scg_and(b, scg_not(b, in_sub), on_record));
+    scg_value one = scg_const_i(b, HYBRID_TRIMMED_RESTARTS);
+    scg_value lower_elsewhere = scg_and(b, scg_and(b, elsewhere, steep), scg_lt(b, one, allowed));
+    cap = scg_select(b, lower_elsewhere, one, cap);
+    lower = scg_or(b, lower, lower_elsewhere);
     scg_store(b, restarts_var, scg_select(b, lower, cap, allowed));
     accepted = scg_and(b, accepted, kept);
     /* `found`: this run's crossing ends the search (without the seek, any

@@ -55,9 +55,10 @@ void scg_newton_step(scg_isect *c, void *user)
         scg_value normal = scg_cross(b, f[1], f[2]);
         scg_value normal_len = scg_length(b, normal);
         scg_store(b, c->facing_var, scg_div(b, scg_abs(b, det), normal_len));
-        scg_store(b, c->depth_var, scg_comp(b, f[0], 2));
         scg_name(b, NULL);
     }
+    if (c->depth_var)
+        scg_store(b, c->depth_var, scg_comp(b, f[0], 2));
 }
 
 void scg_method_newton(scg_isect *c, scg_value uv0, scg_value behind)
