@@ -11,7 +11,10 @@
  * trim curves cut away — Newton starts again from the middle of the
  * sub-patch, then from the middles of its quarters (and of its sixteenths
  * where the sub-patch is large on screen), each run confined to its piece
- * plus overlap, until one is kept. The iteration count adds the steps of
+ * plus overlap, until one is kept. After a point the trim curves cut away,
+ * or one on a neighbouring sub-patch, the restarts depend on how steeply
+ * the ray meets it (a second crossing of the sub-patch needs the surface
+ * to turn back towards the ray). The iteration count adds the steps of
  * every run.
  *
  * Shaped for a GPU that runs both sides of every branch under a mask and a
@@ -40,7 +43,13 @@
  * 1.21-1.23, 1.15-1.16 and 1.04-1.15x; 512 left a hole in PRO20359-L1's
  * tail close-up that 256 closes. After a crossing cut away, 0 restarts
  * left 0.18-0.76 % of PRO20359-L1's pixels failing, 1 none, and 5 cost
- * its close-up 3.6x Newton's frame against 2.5x. */
+ * its close-up 3.6x Newton's frame against 2.5x. None where the ray meets
+ * the cut-away crossing above |cos| HYBRID_CUT_FACING, and one where it
+ * meets a neighbouring sub-patch's crossing that steeply: the hammer went
+ * from 1.46x to 1.27x Newton's frame at 1024², gpucast_part from 1.17x to
+ * 1.11x (medians of 3 runs), failing the same pixels; with no restart at
+ * all after a cut-away point PRO20359-L1's tail close-up failed 0.74 %
+ * at 512² (docs/stability.md, "The hybrid on trimmed models"). */
 #define HYBRID_PASS_STEPS 3
 #define HYBRID_RESTARTS 5
 #define HYBRID_RESTARTS_LARGE 21
