@@ -34,8 +34,8 @@
 /* Newton steps a pass (a run of itN steps takes ⌈itN/3⌉ passes), and
  * restarts after Newton's own run: the sub-patch's middle and its four
  * quarters'; on to the sixteenths (21) where the sub-patch spans more than
- * HYBRID_LARGE_PIXELS; one at most after a crossing the trim curves cut
- * away. Measured (docs/compiler.md, "Methods"): on the teapot at 1024²,
+ * HYBRID_LARGE_PIXELS; the quarters at most after a crossing the trim
+ * curves cut away. Measured (docs/compiler.md, "Methods"): on the teapot at 1024²,
  * passes of 2, 3 and 6 steps cost 1.08-1.12, 1.09-1.20 and 1.42x Newton's
  * frame with 5 restarts; 21 restarts everywhere cost 1.4-1.7x, paid by
  * the rays near silhouettes that miss and so run them all, and a
@@ -43,18 +43,20 @@
  * 1.21-1.23, 1.15-1.16 and 1.04-1.15x; 512 left a hole in PRO20359-L1's
  * tail close-up that 256 closes. After a crossing cut away, 0 restarts
  * left 0.18-0.76 % of PRO20359-L1's pixels failing, 1 none, and 5 cost
- * its close-up 3.6x Newton's frame against 2.5x. None where the ray meets
- * the cut-away crossing above |cos| HYBRID_CUT_FACING, and one where it
- * meets a neighbouring sub-patch's crossing that steeply: the hammer went
- * from 1.46x to 1.27x Newton's frame at 1024², gpucast_part from 1.17x to
- * 1.11x (medians of 3 runs), failing the same pixels; with no restart at
- * all after a cut-away point PRO20359-L1's tail close-up failed 0.74 %
- * at 512² (docs/stability.md, "The hybrid on trimmed models"). */
+ * its close-up 3.6x Newton's frame against 2.5x. Now none where the ray
+ * meets the cut-away crossing above |cos| HYBRID_CUT_FACING (the quarters'
+ * below), and one where it meets a neighbouring sub-patch's crossing that
+ * steeply: the hammer went from 1.46x to 1.27-1.36x Newton's frame at
+ * 1024², gpucast_part from 1.17x to 1.11-1.15x (medians of 3 runs),
+ * failing the same pixels; with no restart at all after a cut-away point
+ * PRO20359-L1's tail close-up failed 0.74 % at 512² (docs/stability.md,
+ * "The hybrid on trimmed models"). */
 #define HYBRID_PASS_STEPS 3
 #define HYBRID_RESTARTS 5
 #define HYBRID_RESTARTS_LARGE 21
 #define HYBRID_LARGE_PIXELS 256.0f
-#define HYBRID_TRIMMED_RESTARTS 1
+#define HYBRID_TRIMMED_RESTARTS 5
+#define HYBRID_ELSEWHERE_RESTARTS 1
 #define HYBRID_CUT_FACING 0.2f
 
 /* From the sub-patch's middle (`mid`), Newton may converge to a farther
@@ -204,11 +206,13 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_value in_sub = scg_isect_inside(b, uv, sub_lo, sub_hi);
     scg_value accepted = scg_and(b, converged, in_sub);
     scg_value kept = scg_isect_kept(c, accepted, uv);
-    /* A crossing the trim curves cut away leaves one restart (from the
-     * sub-patch's middle) at most, and none where the ray meets it at
-     * |cos| above HYBRID_CUT_FACING: a second, kept crossing in the same
-     * sub-patch is rare, and rays through the holes of trimmed models are
-     * many. */
+    /* A crossing the trim curves cut away leaves the middle's and the
+     * quarters' restarts where the ray meets it below |cos|
+     * HYBRID_CUT_FACING, and none above: a second, kept crossing in the
+     * same sub-patch needs the surface to turn back towards the ray, and
+     * rays through the holes of trimmed models are many. (PRO20359-L1's
+     * tail close-up with hulls of adaptive:0.001 left 52 holes at 512²
+     * with the middle's restart alone, none with the quarters'.) */
     scg_value cut_away = scg_and(b, accepted, scg_not(b, kept));
     scg_value allowed = scg_load(b, restarts_var);
     scg_value facing = scg_load(b, c->facing_var);
@@ -222,7 +226,7 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
      * sub-patch, which meet the neighbour, ran every restart before. */
     scg_value on_record = scg_isect_inside(b, uv, c->rec_lo, c->rec_hi);
     scg_value elsewhere = scg_and(b, converged, scg_and(b, scg_not(b, in_sub), on_record));
-    scg_value one = scg_const_i(b, HYBRID_TRIMMED_RESTARTS);
+    scg_value one = scg_const_i(b, HYBRID_ELSEWHERE_RESTARTS);
     scg_value lower_elsewhere = scg_and(b, scg_and(b, elsewhere, steep), scg_lt(b, one, allowed));
     cap = scg_select(b, lower_elsewhere, one, cap);
     lower = scg_or(b, lower, lower_elsewhere);
