@@ -11,7 +11,10 @@
  * trim curves cut away — Newton starts again from the middle of the
  * sub-patch, then from the middles of its quarters (and of its sixteenths
  * where the sub-patch is large on screen), each run confined to its piece
- * plus overlap, until one is kept. The iteration count adds the steps of
+ * plus overlap, until one is kept. After a point the trim curves cut away,
+ * or one on a neighbouring sub-patch, the restarts depend on how steeply
+ * the ray meets it (a second crossing of the sub-patch needs the surface
+ * to turn back towards the ray). The iteration count adds the steps of
  * every run.
  *
  * Shaped for a GPU that runs both sides of every branch under a mask and a
@@ -31,8 +34,8 @@
 /* Newton steps a pass (a run of itN steps takes ⌈itN/3⌉ passes), and
  * restarts after Newton's own run: the sub-patch's middle and its four
  * quarters'; on to the sixteenths (21) where the sub-patch spans more than
- * HYBRID_LARGE_PIXELS; one at most after a crossing the trim curves cut
- * away. Measured (docs/compiler.md, "Methods"): on the teapot at 1024²,
+ * HYBRID_LARGE_PIXELS; the quarters at most after a crossing the trim
+ * curves cut away. Measured (docs/compiler.md, "Methods"): on the teapot at 1024²,
  * passes of 2, 3 and 6 steps cost 1.08-1.12, 1.09-1.20 and 1.42x Newton's
  * frame with 5 restarts; 21 restarts everywhere cost 1.4-1.7x, paid by
  * the rays near silhouettes that miss and so run them all, and a
@@ -40,12 +43,33 @@
  * 1.21-1.23, 1.15-1.16 and 1.04-1.15x; 512 left a hole in PRO20359-L1's
  * tail close-up that 256 closes. After a crossing cut away, 0 restarts
  * left 0.18-0.76 % of PRO20359-L1's pixels failing, 1 none, and 5 cost
- * its close-up 3.6x Newton's frame against 2.5x. */
+ * its close-up 3.6x Newton's frame against 2.5x. Now none where the ray
+ * meets the cut-away crossing above |cos| HYBRID_CUT_FACING (the quarters'
+ * below), and one where it meets a neighbouring sub-patch's crossing that
+ * steeply: the hammer went from 1.46x to 1.27-1.36x Newton's frame at
+ * 1024², gpucast_part from 1.17x to 1.11-1.15x (medians of 3 runs),
+ * failing the same pixels; with no restart at all after a cut-away point
+ * PRO20359-L1's tail close-up failed 0.74 % at 512² (docs/stability.md,
+ * "The hybrid on trimmed models"). */
 #define HYBRID_PASS_STEPS 3
 #define HYBRID_RESTARTS 5
 #define HYBRID_RESTARTS_LARGE 21
 #define HYBRID_LARGE_PIXELS 256.0f
-#define HYBRID_TRIMMED_RESTARTS 1
+#define HYBRID_TRIMMED_RESTARTS 5
+#define HYBRID_ELSEWHERE_RESTARTS 1
+#define HYBRID_CUT_FACING 0.2f
+
+/* From the sub-patch's middle (`mid`), Newton may converge to a farther
+ * crossing of a sub-patch that folds away from the ray near a silhouette,
+ * where the ray crosses it twice: 0.106 % of the teapot at 512² (47 pixels,
+ * all within |cos| 0.34 of grazing, 38 within 0.2), 0.13 % at 1024². There
+ * a kept crossing seen at |cos(ray, normal)| below HYBRID_SEEK_FACING sends
+ * the ray on through the quarters' restarts, which keep a crossing only if
+ * it is nearer (by the tolerance). The cp map and the view start come from
+ * the hull's front, before the nearer crossing, and fail no such pixel on
+ * the tea set; they skip the search (it would cost them iterations that
+ * find nothing). */
+#define HYBRID_SEEK_FACING 0.3f
 
 /* The corners lo, hi of the piece of the sub-patch domain that restart r
  * (int) starts in: r = 0 the whole domain, 1…4 its quarters, 5…20 its
@@ -155,6 +179,23 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_name(b, "restarts");
     scg_value restarts_var = scg_var(b, SCG_INT, 0, restart_count(c));
     scg_name(b, NULL);
+    bool seek = c->key->start == SC_START_MID;
+    scg_value best_uv_var = 0, best_depth_var = 0, best_found_var = 0, seeking_var = 0;
+    scg_name(b, "facing");
+    c->facing_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, 1.0f));
+    if (seek) {
+        scg_name(b, "depth");
+        c->depth_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, 0.0f));
+        scg_name(b, "best_uv");
+        best_uv_var = scg_var(b, SCG_VEC2, 0, uv0);
+        scg_name(b, "best_depth");
+        best_depth_var = scg_var(b, SCG_FLOAT, 0, scg_const_f(b, 3.0e38f));
+        scg_name(b, "best_found");
+        best_found_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, false));
+        scg_name(b, "seeking");
+        seeking_var = scg_var(b, SCG_BOOL, 0, scg_const_b(b, false));
+        scg_name(b, NULL);
+    }
     scg_loop(b, scg_const_i(b, passes_per_run * (1 + HYBRID_RESTARTS_LARGE)));
     c->lo = scg_load(b, lo_var);
     c->hi = scg_load(b, hi_var);
@@ -165,17 +206,61 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_value in_sub = scg_isect_inside(b, uv, sub_lo, sub_hi);
     scg_value accepted = scg_and(b, converged, in_sub);
     scg_value kept = scg_isect_kept(c, accepted, uv);
-    /* A crossing the trim curves cut away leaves one restart (from the
-     * sub-patch's middle) at most: a second, kept crossing in the same
-     * sub-patch is rare, and rays through the holes of trimmed models are
-     * many. */
+    /* A crossing the trim curves cut away leaves the middle's and the
+     * quarters' restarts where the ray meets it below |cos|
+     * HYBRID_CUT_FACING, and none above: a second, kept crossing in the
+     * same sub-patch needs the surface to turn back towards the ray, and
+     * rays through the holes of trimmed models are many. (PRO20359-L1's
+     * tail close-up with hulls of adaptive:0.001 left 52 holes at 512²
+     * with the middle's restart alone, none with the quarters'.) */
     scg_value cut_away = scg_and(b, accepted, scg_not(b, kept));
     scg_value allowed = scg_load(b, restarts_var);
-    scg_value cap = scg_const_i(b, HYBRID_TRIMMED_RESTARTS);
+    scg_value facing = scg_load(b, c->facing_var);
+    scg_value steep = scg_lt(b, scg_const_f(b, HYBRID_CUT_FACING), facing);
+    scg_value cap = scg_select(b, steep, scg_const_i(b, 0), scg_const_i(b, HYBRID_TRIMMED_RESTARTS));
     scg_value lower = scg_and(b, cut_away, scg_lt(b, cap, allowed));
+    /* So does a crossing on a neighbouring sub-patch of the record met at
+     * |cos| above HYBRID_CUT_FACING: that sub-patch's hull draws it, and
+     * this one may hold a nearer crossing only where the record turns
+     * back towards the ray. Rays through the hull's overhang beyond its
+     * sub-patch, which meet the neighbour, ran every restart before. */
+    scg_value on_record = scg_isect_inside(b, uv, c->rec_lo, c->rec_hi);
+    scg_value elsewhere = scg_and(b, converged, scg_and(b, scg_not(b, in_sub), on_record));
+    scg_value one = scg_const_i(b, HYBRID_ELSEWHERE_RESTARTS);
+    scg_value lower_elsewhere = scg_and(b, scg_and(b, elsewhere, steep), scg_lt(b, one, allowed));
+    cap = scg_select(b, lower_elsewhere, one, cap);
+    lower = scg_or(b, lower, lower_elsewhere);
     scg_store(b, restarts_var, scg_select(b, lower, cap, allowed));
     accepted = scg_and(b, accepted, kept);
-    scg_store(b, c->found_var, accepted);
+    /* `found`: this run's crossing ends the search (without the seek, any
+     * kept crossing). */
+    scg_value found = accepted, seek_begins = 0;
+    if (seek) {
+        scg_name(b, "nearer");
+        scg_value depth = scg_load(b, c->depth_var);
+        scg_value best_depth = scg_load(b, best_depth_var);
+        scg_value nearer = scg_lt(b, scg_add(b, depth, c->tol), best_depth);
+        scg_value better = scg_and(b, accepted, nearer);
+        scg_value best_uv = scg_load(b, best_uv_var);
+        scg_store(b, best_uv_var, scg_select(b, better, uv, best_uv));
+        scg_store(b, best_depth_var, scg_select(b, better, depth, best_depth));
+        scg_value best_found = scg_load(b, best_found_var);
+        scg_store(b, best_found_var, scg_or(b, best_found, better));
+        scg_value grazing = scg_lt(b, scg_load(b, c->facing_var), scg_const_f(b, HYBRID_SEEK_FACING));
+        scg_value seeking = scg_load(b, seeking_var);
+        seek_begins = scg_and(b, scg_and(b, better, grazing), scg_not(b, seeking));
+        scg_store(b, seeking_var, scg_or(b, seeking, seek_begins));
+        found = scg_and(b, better, scg_not(b, seek_begins));
+        /* The seek runs through the quarters at most. */
+        scg_value allowed_now = scg_load(b, restarts_var);
+        scg_value quarters = scg_const_i(b, HYBRID_RESTARTS);
+        scg_value fewer = scg_and(b, seek_begins, scg_lt(b, quarters, allowed_now));
+        scg_store(b, restarts_var, scg_select(b, fewer, quarters, allowed_now));
+        scg_store(b, c->found_var, scg_or(b, best_found, better));
+        scg_name(b, NULL);
+    } else {
+        scg_store(b, c->found_var, accepted);
+    }
     /* A run is over when Newton stopped (converged, singular, left its
      * box) or spent its itN steps; then the next piece, if any. */
     scg_name(b, "run_over");
@@ -184,8 +269,15 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_value out_of_steps = scg_eq(b, pass, scg_const_i(b, passes_per_run));
     scg_value run_over = scg_or(b, scg_load(b, c->done_var), out_of_steps);
     scg_value restart = scg_load(b, restart_var);
+    if (seek) {
+        /* The first run started at the sub-patch's middle already: the
+         * seek goes on from the quarters. */
+        scg_value first_quarter = scg_const_i(b, 1);
+        scg_value skip = scg_and(b, seek_begins, scg_lt(b, restart, first_quarter));
+        restart = scg_select(b, skip, first_quarter, restart);
+    }
     scg_value no_more = scg_le(b, scg_load(b, restarts_var), restart);
-    scg_value stop = scg_or(b, accepted, scg_and(b, run_over, no_more));
+    scg_value stop = scg_or(b, found, scg_and(b, run_over, no_more));
     if (behind)
         stop = scg_or(b, stop, behind);
     scg_name(b, NULL);
@@ -199,5 +291,15 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_store(b, restart_var, scg_add(b, restart, scg_const_i(b, 1)));
     scg_endif(b);
     scg_endloop(b);
+    if (seek) {
+        /* The seek's last run may have ended elsewhere: the verdict judges
+         * the nearest kept crossing. */
+        scg_name(b, "nearest");
+        scg_value last = scg_load(b, c->uv_var);
+        scg_value best_found = scg_load(b, best_found_var);
+        scg_value best_uv = scg_load(b, best_uv_var);
+        scg_store(b, c->uv_var, scg_select(b, best_found, best_uv, last));
+        scg_name(b, NULL);
+    }
     c->trimmed_by_method = true;
 }

@@ -34,6 +34,10 @@ typedef struct scg_isect {
      * it instead of the distance to the hit, which needs a regular
      * Jacobian. */
     scg_value converged_var, found_var;
+    /* Optional: newton_step stores here |cos| of the angle between the ray
+     * and the normal at the point it evaluated (facing_var) and that
+     * point's coordinate along the ray's unit axis (depth_var). */
+    scg_value facing_var, depth_var;
     /* Set by a method whose found_var already excludes points the trim
      * curves cut away (scg_isect_kept), so that the verdict does not test
      * them again. */

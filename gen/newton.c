@@ -48,6 +48,17 @@ void scg_newton_step(scg_isect *c, void *user)
     scg_isect_take_step(c, uv, next, singular, converged);
     if (c->converged_var)
         scg_store(b, c->converged_var, scg_and(b, converged, scg_not(b, singular)));
+    if (c->facing_var) {
+        /* In the ray's frame the normal is Fu × Fv, whose axis component
+         * is det. */
+        scg_name(b, "facing");
+        scg_value normal = scg_cross(b, f[1], f[2]);
+        scg_value normal_len = scg_length(b, normal);
+        scg_store(b, c->facing_var, scg_div(b, scg_abs(b, det), normal_len));
+        scg_name(b, NULL);
+    }
+    if (c->depth_var)
+        scg_store(b, c->depth_var, scg_comp(b, f[0], 2));
 }
 
 void scg_method_newton(scg_isect *c, scg_value uv0, scg_value behind)
