@@ -235,6 +235,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->gpu_memory_budget = d->gpu_memory_budget;
     r->method = d->method;
     r->deferred = d->deferred != 0;
+    r->time_intersection = d->time_intersection != 0;
     return SC_OK;
 }
 

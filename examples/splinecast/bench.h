@@ -65,4 +65,9 @@ int bench_accuracy_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc de
                        const sc_camera_desc *cam, int frames, const double *px,
                        const double *deg, int count);
 
+/* `--peak` (bench_peak.c): the peak vec4 multiply-add rate and the rate
+ * the intersection achieves on scene; returns the exit status. */
+int bench_peak_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                   const sc_camera_desc *cam, int frames);
+
 #endif

@@ -349,7 +349,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear, uncleared);
+    r->time_hulls = r->desc.time_intersection;
     int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
+    r->time_hulls = 0;
     if (status == SC_OK && r->desc.deferred && r->scene->terrain &&
         r->desc.view == SC_SHOW_SHADE)
         status = sc_deferred_shade(r, cam->eye, err);
@@ -450,6 +452,15 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     }
 
     r->draw_calls = r->program_switches = r->culled = r->readbacks = 0;
+    r->timed = r->time_hulls;
+    double t0 = 0;
+    if (r->timed) {
+        if (!r->time_query)
+            gl->GenQueries(1, &r->time_query);
+        gl->Finish();
+        t0 = sc_now();
+        gl->BeginQuery(GL_TIME_ELAPSED, r->time_query);
+    }
     GLuint current = 0;
     int nruns = 0, nidx = 0;
     for (int g = 0; g < r->ngroups; g++)
@@ -489,6 +500,11 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     }
     if (manual)
         gl->BindTextureUnit(SCG_UNIT_NEAREST_T, 0);
+    if (r->timed) {
+        gl->EndQuery(GL_TIME_ELAPSED);
+        gl->Finish();
+        r->intersect_ms = 1e3 * (sc_now() - t0);
+    }
     return SC_OK;
 }
 

@@ -122,6 +122,13 @@ struct sc_renderer {
     /* The programs' count of intersections run (SCG_BUFFER_COUNTERS), zeroed
      * at the start of each frame and read only when asked for. */
     GLuint counter_buffer;
+    /* desc.time_intersection: the hull draws of sc_renderer_draw's frames
+     * (not an application's, which may time its own) between two glFinish
+     * and in a GL_TIME_ELAPSED query; timed: the last frame was; its wall
+     * time in intersect_ms. */
+    GLuint time_query;
+    int time_hulls, timed;
+    double intersect_ms;
     double compile_ms;
     int manhattan;           /* a terrain drawn in Manhattan sets: its order
                                 was left to the default */
