@@ -28,7 +28,7 @@ void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc,
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
         .termination = desc->ert,
-        .outputs = view_outputs(desc->view),
+        .outputs = view_outputs(desc),
         .method = desc->method,
     };
     sc_surface_key(s, &opts, key);

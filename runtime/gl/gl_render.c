@@ -21,15 +21,21 @@
 
 /* The attachments the programs write: the contract's fragment outputs
  * that the view's keys declare, at their locations. */
-static void target_formats(sc_show view, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
+static void target_formats(const sc_render_desc *d, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
 {
-    unsigned outputs = view_outputs(view);
+    unsigned outputs = view_outputs(d);
     memset(formats, 0, sizeof(GLenum) * SC_GL_TARGET_MAX_COLOURS);
 #define X(ID, location, name, type, output, format, miss, clear) \
     if (outputs & SCG_OUTPUT_##output)                          \
         formats[location] = GL_##format;
     SCG_FRAG_OUTS(X)
 #undef X
+    /* Colour only: of the AOVs, the distance channel that manual early
+     * termination reads, if any; the programs' other writes go nowhere. */
+    if (d->colour_only)
+        for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++)
+            if (i != SCG_FRAG_OUT_COLOUR && i != SCG_FRAG_OUT_UVT)
+                formats[i] = 0;
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -317,7 +323,7 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     const sc_gl *gl = r->gl;
     int manual = manual_ert(r->desc.ert);
     GLenum formats[SC_GL_TARGET_MAX_COLOURS];
-    target_formats(r->desc.view, formats);
+    target_formats(&r->desc, formats);
     if (r->target.width != cam->width || r->target.height != cam->height) {
         sc_gl_target_destroy(gl, &r->target);
         sc_gl_target_desc td = {.width = cam->width, .height = cam->height};
@@ -543,6 +549,11 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
     const sc_gl_target *t = &r->target;
     if (!t->framebuffer)
         return sc_fail(err, NULL, 0, "nothing drawn yet");
+    if (r->desc.colour_only)
+        return sc_fail(err, NULL, 0, "the renderer was made colour-only: its frames write the "
+                                     "colour and depth alone, no AOVs (surface ids, uv, "
+                                     "distance, point, normal, iterations) to read back; make "
+                                     "it without colour_only to read frames");
     int n = t->width * t->height;
     sc_aov own;
     sc_aov *a = aov ? aov : &own;

@@ -59,6 +59,8 @@ typedef struct sc_render_desc {
     int deferred;           /* terrains: the intersection programs write the
                                AOVs only, and a full-screen pass shades from
                                them (gl_deferred.c) */
+    int colour_only;        /* shaded frames that write colour and depth, no
+                               AOVs (view_outputs); not read back */
     int time_intersection;  /* the frames' hull draws between two glFinish,
                                timed (sc_render_stats.intersect_ms) */
 } sc_render_desc;

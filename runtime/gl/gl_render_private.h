@@ -55,11 +55,22 @@ static inline unsigned view_image_output(sc_show view)
     }
 }
 
-/* The outputs a render's programs write: the shaded colour, the AOVs (the
- * read-back and the nearest distances need them) and the view's image. */
-static inline unsigned view_outputs(sc_show view)
+static inline int manual_ert(sc_ray_termination mode)
 {
-    return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(view);
+    return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
+}
+
+/* The outputs a render's programs write: the shaded colour, the AOVs (the
+ * read-back and the nearest distances need them) and the view's image. A
+ * colour-only renderer's programs write the colour alone, or, where manual
+ * early termination reads the nearest distances from the AOVs' distance
+ * channel, still the AOVs (its target then keeps that attachment alone). */
+static inline unsigned view_outputs(const sc_render_desc *d)
+{
+    sc_ray_termination ert = d->ert ? d->ert : SC_DEFAULT_TERMINATION;
+    if (d->colour_only && !manual_ert(ert))
+        return SCG_OUTPUT_SHADE;
+    return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(d->view);
 }
 
 /* The hulls drawn with one program. */
@@ -177,11 +188,6 @@ void sc_prepare_group_hulls(sc_renderer *r);
 size_t sc_prepare_gpu_bytes(const sc_renderer *r);
 /* r->desc's defaults filled in (termination, order, batch size). */
 void sc_prepare_defaults(sc_renderer *r);
-
-static inline int manual_ert(sc_ray_termination mode)
-{
-    return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
-}
 
 /* The camera's view-projection moved to the origin (what the programs'
  * sc_view_projection is): proj × view with view's translation dropped. */

@@ -501,6 +501,13 @@ typedef struct sc_renderer_desc {
      * (sc_renderer_info.intersect_ms); the two waits cost a stall, so this
      * is for benchmarks (`bench --peak`). */
     int time_intersection;
+    /* 1: shaded frames write the colour and depth alone, no AOVs (surface
+     * ids, uv, distance, point, normal, iterations): for drawing with
+     * sc_draw or sc_draw_gl, not for reading back (sc_read_frame, sc_render
+     * and sc_pick then fail, saying so). Under manual early termination
+     * the distance is still written, which the termination reads. Needs
+     * the shaded view, not deferred. 0: every frame writes the AOVs. */
+    int colour_only;
 } sc_renderer_desc;
 
 /* Writes what a renderer made with desc would upload for the scene —

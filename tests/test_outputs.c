@@ -1,0 +1,73 @@
+/* test_outputs.c — outputs on demand: a colour-only renderer draws the
+ * same work as one that writes the AOVs, drops the AOVs its termination
+ * does not read, and says so when asked for a frame. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "splinecast.h"
+#include "test.h"
+
+static long long intersections_of(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                                  const sc_camera_desc *cam, sc_key *key, sc_error *err)
+{
+    sc_renderer_id r;
+    sc_renderer_info info = {0};
+    int count = 0;
+    if (sc_make_renderer(ctx, scene, &desc, &r, err) != SC_OK)
+        return -1;
+    int ok = sc_draw(r, cam, err) == SC_OK && sc_query_renderer_info(r, &info, err) == SC_OK &&
+             sc_query_renderer_keys(r, key, 1, &count, err) == SC_OK;
+    if (ok && desc.colour_only) {
+        sc_frame_id frame = {0};
+        sc_error read_err = {0};
+        ok = sc_read_frame(r, &frame, &read_err) == SC_FAIL &&
+             strstr(read_err.message, "colour-only") && strstr(read_err.message, "no AOVs");
+        if (!ok)
+            snprintf(err->message, sizeof err->message, "read: %.400s", read_err.message);
+    }
+    sc_destroy_renderer(r);
+    return ok ? info.intersections : -1;
+}
+
+TEST(outputs_colour_only_frames)
+{
+    sc_error err = {0};
+    sc_context_id ctx;
+    sc_scene_id scene;
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.path = "teapot"}, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_destroy_scene(scene);
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_camera_desc cam = {.width = 96, .height = 72};
+    static const sc_ray_termination modes[] = {SC_TERMINATION_DEFAULT, SC_TERMINATION_NONE};
+    for (int m = 0; m < 2; m++) {
+        sc_key full, colour;
+        long long a = intersections_of(ctx, scene, (sc_renderer_desc){.termination = modes[m]},
+                                       &cam, &full, &err);
+        CHECK(a > 0);
+        long long b = intersections_of(
+            ctx, scene, (sc_renderer_desc){.termination = modes[m], .colour_only = 1}, &cam,
+            &colour, &err);
+        if (b < 0)
+            TEST_FAIL_("colour-only: %s", err.message);
+        /* The same rays run; the programs drop the AOVs unless manual
+         * termination reads their distance. */
+        CHECK_INT(a, b);
+        size_t n = strlen(colour.text);
+        CHECK(n > 4 && !strcmp(full.text + strlen(full.text) - 4, ".aov"));
+        if (modes[m] == SC_TERMINATION_NONE)
+            CHECK(!strcmp(colour.text + n - 10, "-out.shade"));
+        else
+            CHECK_STR(colour.text, full.text);
+    }
+    sc_renderer_id r;
+    CHECK_INT(sc_make_renderer(ctx, scene,
+                               &(sc_renderer_desc){.colour_only = 1, .show = SC_SHOW_NORMAL}, &r,
+                               &err),
+              SC_FAIL);
+    CHECK_CONTAINS(err.message, "colour_only");
+    sc_destroy_context(ctx);
+    sc_destroy_scene(scene);
+}
