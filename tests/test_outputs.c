@@ -52,15 +52,17 @@ TEST(outputs_colour_only_frames)
             &colour, &err);
         if (b < 0)
             TEST_FAIL_("colour-only: %s", err.message);
-        /* The same rays run; the programs drop the AOVs unless manual
-         * termination reads their distance. */
-        CHECK_INT(a, b);
-        size_t n = strlen(colour.text);
-        CHECK(n > 4 && !strcmp(full.text + strlen(full.text) - 4, ".aov"));
+        /* The programs drop the AOVs. Without termination the same rays
+         * run; under manual termination the nearest distances come from
+         * the depth buffer, made a little larger than it rounds them, so
+         * a few more rays may run, never fewer than a handful less. */
         if (modes[m] == SC_TERMINATION_NONE)
-            CHECK(!strcmp(colour.text + n - 10, "-out.shade"));
+            CHECK_INT(a, b);
         else
-            CHECK_STR(colour.text, full.text);
+            CHECK(b >= a - a / 1000 && b <= a + a / 50);
+        size_t n = strlen(colour.text);
+        CHECK(n > 10 && !strcmp(full.text + strlen(full.text) - 4, ".aov"));
+        CHECK(!strcmp(colour.text + n - 10, "-out.shade"));
     }
     sc_renderer_id r;
     CHECK_INT(sc_make_renderer(ctx, scene,

@@ -30,11 +30,11 @@ static void target_formats(const sc_render_desc *d, GLenum formats[SC_GL_TARGET_
         formats[location] = GL_##format;
     SCG_FRAG_OUTS(X)
 #undef X
-    /* Colour only: of the AOVs, the distance channel that manual early
-     * termination reads, if any; the programs' other writes go nowhere. */
+    /* Colour only: the colour attachment alone (manual early termination
+     * then reads the depth buffer). */
     if (d->colour_only)
         for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++)
-            if (i != SCG_FRAG_OUT_COLOUR && i != SCG_FRAG_OUT_UVT)
+            if (i != SCG_FRAG_OUT_COLOUR)
                 formats[i] = 0;
 }
 
@@ -199,8 +199,12 @@ static void refresh_nearest(sc_renderer *r)
     r->tile_far = sc_realloc(r->tile_far, (size_t)tw * (size_t)th, sizeof(float));
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
     /* Rows bottom-up, as the window, and so back into sc_nearest_t. */
-    gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
-                        (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->uvt);
+    if (r->desc.colour_only)
+        gl->GetTextureImage(r->target.depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                            (GLsizei)((size_t)w * (size_t)h * sizeof(float)), r->uvt);
+    else
+        gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
+                            (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->uvt);
     for (int t = 0; t < tw * th; t++)
         r->tile_far[t] = r->nearest[t] = 0;
     /* Depth = distance × the cosine between the pixel's ray and the view
@@ -226,7 +230,23 @@ static void refresh_nearest(sc_renderer *r)
         const float *uvt = r->uvt + 4 * (size_t)y * (size_t)w;
         const float *cosine = r->cosine + (size_t)y * (size_t)w;
         for (int x = 0; x < w; x++) {
-            float t = uvt[4 * x + 2], depth = t * cosine[x];
+            float t, depth;
+            if (r->desc.colour_only) {
+                /* A colour-only frame has no distances: the depth buffer's
+                 * window depth back to the depth along the view (the
+                 * inverse of the projection), made larger by more than
+                 * the buffer's rounding there (relative 2^-24 · f/n), so
+                 * that nothing in front of a hit is ever culled. */
+                double n = r->znear, f = r->zfar;
+                double d = r->uvt[(size_t)y * (size_t)w + (size_t)x];
+                double z = d >= 1 ? 3.0e38 : 2 * f * n / ((f + n) - (2 * d - 1) * (f - n));
+                z *= 1 + 1e-6 * f / n + 1e-5;
+                depth = (float)z;
+                t = d >= 1 ? 3.0e38f : (float)(z / cosine[x]);
+            } else {
+                t = uvt[4 * x + 2];
+                depth = t * cosine[x];
+            }
             if (depth > row[x / NEAREST_TILE])
                 row[x / NEAREST_TILE] = depth;
             if (t > row_t[x / NEAREST_TILE])
@@ -338,6 +358,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     sc_camera_frame(cam, fwd, right, up);
     double znear, zfar;
     depth_range(r, cam->eye, fwd, &znear, &zfar);
+    r->znear = znear;
+    r->zfar = zfar;
     float view[16], proj[16], vp[16];
     sc_camera_gl_matrices(cam, znear, zfar, view, proj);
     sc_render_eye_projection(view, proj, vp);

@@ -60,7 +60,8 @@ typedef struct sc_render_desc {
                                AOVs only, and a full-screen pass shades from
                                them (gl_deferred.c) */
     int colour_only;        /* shaded frames that write colour and depth, no
-                               AOVs (view_outputs); not read back */
+                               AOVs (view_outputs); not read back; manual
+                               termination reads the depth buffer */
     int time_intersection;  /* the frames' hull draws between two glFinish,
                                timed (sc_render_stats.intersect_ms) */
 } sc_render_desc;

@@ -61,14 +61,13 @@ static inline int manual_ert(sc_ray_termination mode)
 }
 
 /* The outputs a render's programs write: the shaded colour, the AOVs (the
- * read-back and the nearest distances need them) and the view's image. A
- * colour-only renderer's programs write the colour alone, or, where manual
- * early termination reads the nearest distances from the AOVs' distance
- * channel, still the AOVs (its target then keeps that attachment alone). */
+ * read-back needs them) and the view's image; a colour-only renderer's
+ * programs the colour alone (and depth, which every program writes; manual
+ * early termination then takes its nearest distances from the depth
+ * buffer). */
 static inline unsigned view_outputs(const sc_render_desc *d)
 {
-    sc_ray_termination ert = d->ert ? d->ert : SC_DEFAULT_TERMINATION;
-    if (d->colour_only && !manual_ert(ert))
+    if (d->colour_only)
         return SCG_OUTPUT_SHADE;
     return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(d->view);
 }
@@ -139,6 +138,7 @@ struct sc_renderer {
      * time in intersect_ms. */
     GLuint time_query;
     int time_hulls, timed;
+    double znear, zfar;      /* the last frame's depth range */
     double intersect_ms;
     double compile_ms;
     int manhattan;           /* a terrain drawn in Manhattan sets: its order

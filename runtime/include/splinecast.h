@@ -504,9 +504,9 @@ typedef struct sc_renderer_desc {
     /* 1: shaded frames write the colour and depth alone, no AOVs (surface
      * ids, uv, distance, point, normal, iterations): for drawing with
      * sc_draw or sc_draw_gl, not for reading back (sc_read_frame, sc_render
-     * and sc_pick then fail, saying so). Under manual early termination
-     * the distance is still written, which the termination reads. Needs
-     * the shaded view, not deferred. 0: every frame writes the AOVs. */
+     * and sc_pick then fail, saying so); manual early termination then
+     * takes the nearest distances from the depth buffer. Needs the shaded
+     * view, not deferred. 0: every frame writes the AOVs. */
     int colour_only;
 } sc_renderer_desc;
 
