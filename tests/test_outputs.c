@@ -5,6 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl_context.h"
+#include "gl_context_util.h"
+#include "gl_render_private.h"
+#include "io.h"
+#include "shader_contract.h"
 #include "splinecast.h"
 #include "test.h"
 
@@ -72,4 +77,52 @@ TEST(outputs_colour_only_frames)
     CHECK_CONTAINS(err.message, "colour_only");
     sc_destroy_context(ctx);
     sc_destroy_scene(scene);
+}
+
+/* The colour-only frame's picture is the full frame's: its colour
+ * attachment, read by the runtime's own means, against the shaded image
+ * of a renderer that writes the AOVs, under the default (manual)
+ * termination, whose nearest distances then come from the depth buffer. */
+TEST(outputs_colour_only_image_matches)
+{
+    const char *why = "";
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const sc_gl *gl = sc_gl_context_gl(ctx);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
+    sc_camera cam = {.eye = {0, -8, 3}, .target = {0, 0, 0.8}, .fovy_deg = 30,
+                     .width = 160, .height = 120};
+    sc_image full = {0}, colour = {0};
+    sc_render_desc desc = {0};
+    sc_renderer *r;
+    CHECK_INT(sc_renderer_create(gl, &scene, &desc, &r, &err), SC_OK);
+    CHECK_INT(sc_renderer_draw(r, &cam, &err), SC_OK);
+    CHECK_INT(sc_renderer_read(r, &full, NULL, &err), SC_OK);
+    sc_renderer_destroy(r);
+    desc.colour_only = 1;
+    CHECK_INT(sc_renderer_create(gl, &scene, &desc, &r, &err), SC_OK);
+    CHECK_INT(sc_renderer_draw(r, &cam, &err), SC_OK);
+    CHECK(r->readbacks > 0);   /* the depth buffer's nearest distances were read */
+    CHECK(r->target.colour[SCG_FRAG_OUT_SURFACE] == 0 && r->target.colour[SCG_FRAG_OUT_UVT] == 0);
+    CHECK_INT(sc_gl_target_read_image(gl, &r->target, SCG_FRAG_OUT_COLOUR, &colour, &err), SC_OK);
+    sc_renderer_destroy(r);
+    int n = cam.width * cam.height, differ = 0;
+    CHECK(full.pixels && colour.pixels && full.channels == colour.channels);
+    for (int p = 0; full.pixels && colour.pixels && p < n; p++) {
+        int worst = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs(full.pixels[p * full.channels + c] - colour.pixels[p * colour.channels + c]);
+            worst = d > worst ? d : worst;
+        }
+        differ += worst > 2;
+    }
+    if (differ)
+        fprintf(stderr, "  %d of %d pixels differ by more than 2 levels\n", differ, n);
+    CHECK(differ <= n / 1000);
+    sc_image_free(&full);
+    sc_image_free(&colour);
+    sc_scene_free(&scene);
 }
