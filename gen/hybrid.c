@@ -152,10 +152,15 @@ static void start_run(scg_isect *c, scg_value r, scg_value lo_var, scg_value hi_
     scg_name(b, NULL);
 }
 
+int scg_hybrid_pass_steps(const scg_key *key)
+{
+    return HYBRID_PASS_STEPS < key->max_iters ? HYBRID_PASS_STEPS : key->max_iters;
+}
+
 void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
 {
     scg_builder *b = c->b;
-    int steps = HYBRID_PASS_STEPS < c->key->max_iters ? HYBRID_PASS_STEPS : c->key->max_iters;
+    int steps = scg_hybrid_pass_steps(c->key);
     int passes_per_run = (c->key->max_iters + steps - 1) / steps;
     scg_isect_vars(c, uv0, behind);
     scg_name(b, "converged");

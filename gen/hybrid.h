@@ -10,4 +10,7 @@
  * middles of the sub-patch and of its quarters and sixteenths. */
 void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind);
 
+/* Newton steps one pass of the hybrid's runtime loop unrolls for key. */
+int scg_hybrid_pass_steps(const scg_key *key);
+
 #endif

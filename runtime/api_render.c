@@ -268,6 +268,8 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .culled_hulls = stats.culled_hulls,
         .readbacks = stats.readbacks,
         .intersections = stats.intersections,
+        .intersect_ms = stats.intersect_ms,
+        .intersect_query_ms = stats.intersect_query_ms,
     };
     if (!sc_scene_view_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi))
         sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);

@@ -244,14 +244,14 @@ TEST(contract_render_target_has_the_output_table)
          * declare it, in the table's format; nothing else is attached. */
         GLenum expected[SC_GL_TARGET_MAX_COLOURS] = {0};
 #define X(ID, location, name, type, output, format, miss, clear) \
-    if (view_outputs(views[v]) & SCG_OUTPUT_##output)            \
+    if (view_outputs(&desc) & SCG_OUTPUT_##output)                 \
         expected[location] = GL_##format;
         SCG_FRAG_OUTS(X)
 #undef X
         for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS && ok; i++)
             ok = r->target.formats[i] == expected[i] && (r->target.colour[i] != 0) == !!expected[i];
         for (int i = 0; i < SCG_FRAG_OUT_ENTRIES && ok; i++)
-            if (view_outputs(views[v]) & scg_frag_outs[i].key_output)
+            if (view_outputs(&desc) & scg_frag_outs[i].key_output)
                 ok = r->keys[0].outputs & scg_frag_outs[i].key_output;
         sc_renderer_destroy(r);
         if (drawn) {

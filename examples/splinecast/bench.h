@@ -16,7 +16,9 @@ typedef struct bench_result {
     sc_renderer_info stats;
 } bench_result;
 
-/* Makes a renderer, draws a warm-up frame and `frames` timed ones. */
+/* Makes a renderer, draws a warm-up frame and `frames` timed ones. A
+ * colour-only renderer (desc->colour_only) is not read back: covered,
+ * iters_mean and mpix_s stay 0. */
 int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
               const sc_camera_desc *cam, int frames, bench_result *out, sc_error *err);
 /* The figures of a renderer already timed: the median of its `frames`
@@ -64,5 +66,10 @@ int bench_methods_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc des
 int bench_accuracy_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
                        const sc_camera_desc *cam, int frames, const double *px,
                        const double *deg, int count);
+
+/* `--peak` (bench_peak.c): the peak vec4 multiply-add rate and the rate
+ * the intersection achieves on scene; returns the exit status. */
+int bench_peak_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                   const sc_camera_desc *cam, int frames);
 
 #endif

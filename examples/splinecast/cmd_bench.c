@@ -75,7 +75,18 @@ static const char usage[] =
     "                         subdivision and the tessellation peers (GLU,\n"
     "                         tessellation shaders) in three views against the\n"
     "                         CPU reference: DIR/points.csv, chart.png, chart.svg\n"
-    "                         (bench --chart DIR --help)\n";
+    "                         (bench --chart DIR --help)\n"
+    "  --colour-only          also time the shaded frame that writes colour and\n"
+    "                         depth alone (no AOVs): a line `bench\n"
+    "                         variant=colour-only ...` after the specialized one\n"
+    "                         (covered pixels and iterations taken from it), then\n"
+    "                         bench frame_ratio_colour_only_over_specialized=R\n"
+    "  --peak                 the machine's vec4 multiply-add rate in a fragment\n"
+    "                         program against the rate the intersection programs\n"
+    "                         achieve on SCENE (FLOPs counted from their IR for\n"
+    "                         the iterations each pixel ran, over the GPU time\n"
+    "                         of the hull draws): one line\n"
+    "                           peak gflops=G achieved_gflops=A fraction=F ...\n";
 
 /* A bumpy Bézier patch of degree d × d over [-1, 1]², heights from a fixed
  * pseudo-random sequence, so that Newton has work at every degree: a .bpt
@@ -169,7 +180,7 @@ int cmd_bench(int argc, char **argv)
     sc_method methods[BENCH_MAX_METHODS];
     int nmethods = 0;
     double target_px[BENCH_MAX_TARGETS], target_deg[BENCH_MAX_TARGETS];
-    int ntargets = 0;
+    int ntargets = 0, peak = 0, colour_only = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
@@ -218,6 +229,10 @@ int cmd_bench(int argc, char **argv)
                 deg_hi < deg_lo || deg_hi > SC_MAX_DEGREE)
                 return cli_usage_error("bench", "--degrees takes LO-HI within 1-%d, not '%s'",
                                        SC_MAX_DEGREE, argv[i]);
+        } else if (!strcmp(a, "--colour-only")) {
+            colour_only = 1;
+        } else if (!strcmp(a, "--peak")) {
+            peak = 1;
         } else if (!strcmp(a, "--ert") && next) {
             if ((status = bench_sweep_parse_erts(argv[++i], &sweep)) != 0)
                 return status;
@@ -269,6 +284,8 @@ int cmd_bench(int argc, char **argv)
     status = 0;
     if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
         status = cli_usage_error("bench", "--camera: %s", err.message);
+    } else if (peak) {
+        status = bench_peak_run(ctx, scene, desc, &cam, frames);
     } else if (ntargets) {
         status = bench_accuracy_run(ctx, scene, desc, &cam, frames, target_px, target_deg,
                                     ntargets);
@@ -280,6 +297,19 @@ int cmd_bench(int argc, char **argv)
             status = cli_report(&err);
         } else {
             bench_print("specialized", "", &specialized);
+            bench_result colour;
+            sc_renderer_desc cdesc = desc;
+            cdesc.colour_only = 1;
+            if (colour_only && bench_run(ctx, scene, &cdesc, &cam, frames, &colour, &err) != SC_OK)
+                return cli_report(&err);
+            if (colour_only) {
+                colour.covered = specialized.covered;
+                colour.iters_mean = specialized.iters_mean;
+                colour.mpix_s = colour.frame_ms > 0 ? colour.covered / (colour.frame_ms * 1e3) : 0;
+                bench_print("colour-only", "", &colour);
+                printf("bench frame_ratio_colour_only_over_specialized=%.3f\n",
+                       colour.frame_ms / specialized.frame_ms);
+            }
             desc.generic = 1;
             if (bench_run(ctx, scene, &desc, &cam, frames, &generic, &err) != SC_OK) {
                 status = cli_report(&err);

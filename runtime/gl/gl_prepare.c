@@ -28,7 +28,7 @@ void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc,
         .trim_method = desc->trim_method,
         .trim_iters = desc->trim_iters,
         .termination = desc->ert,
-        .outputs = view_outputs(desc->view),
+        .outputs = view_outputs(desc),
         .method = desc->method,
     };
     sc_surface_key(s, &opts, key);
@@ -402,6 +402,8 @@ void sc_renderer_destroy(sc_renderer *r)
         gl->DeleteTextures(1, &r->app_nearest);
     if (r->counter_buffer)
         gl->DeleteBuffers(1, &r->counter_buffer);
+    if (r->time_query)
+        gl->DeleteQueries(1, &r->time_query);
     sc_gl_target_destroy(gl, &r->target);
     sc_gpu_data_free(gl, &r->data);
     GLuint buffers[3] = {r->vertex_buffer, r->index_buffer, r->colour_buffer};
@@ -502,6 +504,13 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
         GLuint count = 0;
         r->gl->GetNamedBufferSubData(r->counter_buffer, 0, sizeof count, &count);
         stats->intersections = count;
+    }
+    stats->intersect_ms = stats->intersect_query_ms = -1;
+    if (r->timed) {
+        GLuint64 ns = 0;
+        r->gl->GetQueryObjectui64v(r->time_query, GL_QUERY_RESULT, &ns);
+        stats->intersect_query_ms = 1e-6 * (double)ns;
+        stats->intersect_ms = r->intersect_ms;
     }
 }
 

@@ -21,15 +21,21 @@
 
 /* The attachments the programs write: the contract's fragment outputs
  * that the view's keys declare, at their locations. */
-static void target_formats(sc_show view, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
+static void target_formats(const sc_render_desc *d, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
 {
-    unsigned outputs = view_outputs(view);
+    unsigned outputs = view_outputs(d);
     memset(formats, 0, sizeof(GLenum) * SC_GL_TARGET_MAX_COLOURS);
 #define X(ID, location, name, type, output, format, miss, clear) \
     if (outputs & SCG_OUTPUT_##output)                          \
         formats[location] = GL_##format;
     SCG_FRAG_OUTS(X)
 #undef X
+    /* Colour only: the colour attachment alone (manual early termination
+     * then reads the depth buffer). */
+    if (d->colour_only)
+        for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++)
+            if (i != SCG_FRAG_OUT_COLOUR)
+                formats[i] = 0;
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -193,8 +199,12 @@ static void refresh_nearest(sc_renderer *r)
     r->tile_far = sc_realloc(r->tile_far, (size_t)tw * (size_t)th, sizeof(float));
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
     /* Rows bottom-up, as the window, and so back into sc_nearest_t. */
-    gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
-                        (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->uvt);
+    if (r->desc.colour_only)
+        gl->GetTextureImage(r->target.depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                            (GLsizei)((size_t)w * (size_t)h * sizeof(float)), r->uvt);
+    else
+        gl->GetTextureImage(r->target.colour[SCG_FRAG_OUT_UVT], 0, GL_RGBA, GL_FLOAT,
+                            (GLsizei)(4 * (size_t)w * (size_t)h * sizeof(float)), r->uvt);
     for (int t = 0; t < tw * th; t++)
         r->tile_far[t] = r->nearest[t] = 0;
     /* Depth = distance × the cosine between the pixel's ray and the view
@@ -220,7 +230,23 @@ static void refresh_nearest(sc_renderer *r)
         const float *uvt = r->uvt + 4 * (size_t)y * (size_t)w;
         const float *cosine = r->cosine + (size_t)y * (size_t)w;
         for (int x = 0; x < w; x++) {
-            float t = uvt[4 * x + 2], depth = t * cosine[x];
+            float t, depth;
+            if (r->desc.colour_only) {
+                /* A colour-only frame has no distances: the depth buffer's
+                 * window depth back to the depth along the view (the
+                 * inverse of the projection), made larger by more than
+                 * the buffer's rounding there (relative 2^-24 · f/n), so
+                 * that nothing in front of a hit is ever culled. */
+                double n = r->znear, f = r->zfar;
+                double d = r->uvt[(size_t)y * (size_t)w + (size_t)x];
+                double z = d >= 1 ? 3.0e38 : 2 * f * n / ((f + n) - (2 * d - 1) * (f - n));
+                z *= 1 + 1e-6 * f / n + 1e-5;
+                depth = (float)z;
+                t = d >= 1 ? 3.0e38f : (float)(z / cosine[x]);
+            } else {
+                t = uvt[4 * x + 2];
+                depth = t * cosine[x];
+            }
             if (depth > row[x / NEAREST_TILE])
                 row[x / NEAREST_TILE] = depth;
             if (t > row_t[x / NEAREST_TILE])
@@ -317,7 +343,7 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     const sc_gl *gl = r->gl;
     int manual = manual_ert(r->desc.ert);
     GLenum formats[SC_GL_TARGET_MAX_COLOURS];
-    target_formats(r->desc.view, formats);
+    target_formats(&r->desc, formats);
     if (r->target.width != cam->width || r->target.height != cam->height) {
         sc_gl_target_destroy(gl, &r->target);
         sc_gl_target_desc td = {.width = cam->width, .height = cam->height};
@@ -332,6 +358,8 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     sc_camera_frame(cam, fwd, right, up);
     double znear, zfar;
     depth_range(r, cam->eye, fwd, &znear, &zfar);
+    r->znear = znear;
+    r->zfar = zfar;
     float view[16], proj[16], vp[16];
     sc_camera_gl_matrices(cam, znear, zfar, view, proj);
     sc_render_eye_projection(view, proj, vp);
@@ -349,7 +377,9 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear, uncleared);
+    r->time_hulls = r->desc.time_intersection;
     int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
+    r->time_hulls = 0;
     if (status == SC_OK && r->desc.deferred && r->scene->terrain &&
         r->desc.view == SC_SHOW_SHADE)
         status = sc_deferred_shade(r, cam->eye, err);
@@ -450,6 +480,15 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     }
 
     r->draw_calls = r->program_switches = r->culled = r->readbacks = 0;
+    r->timed = r->time_hulls;
+    double t0 = 0;
+    if (r->timed) {
+        if (!r->time_query)
+            gl->GenQueries(1, &r->time_query);
+        gl->Finish();
+        t0 = sc_now();
+        gl->BeginQuery(GL_TIME_ELAPSED, r->time_query);
+    }
     GLuint current = 0;
     int nruns = 0, nidx = 0;
     for (int g = 0; g < r->ngroups; g++)
@@ -489,6 +528,11 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     }
     if (manual)
         gl->BindTextureUnit(SCG_UNIT_NEAREST_T, 0);
+    if (r->timed) {
+        gl->EndQuery(GL_TIME_ELAPSED);
+        gl->Finish();
+        r->intersect_ms = 1e3 * (sc_now() - t0);
+    }
     return SC_OK;
 }
 
@@ -527,6 +571,11 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
     const sc_gl_target *t = &r->target;
     if (!t->framebuffer)
         return sc_fail(err, NULL, 0, "nothing drawn yet");
+    if (r->desc.colour_only)
+        return sc_fail(err, NULL, 0, "the renderer was made colour-only: its frames write the "
+                                     "colour and depth alone, no AOVs (surface ids, uv, "
+                                     "distance, point, normal, iterations) to read back; make "
+                                     "it without colour_only to read frames");
     int n = t->width * t->height;
     sc_aov own;
     sc_aov *a = aov ? aov : &own;

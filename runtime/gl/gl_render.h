@@ -59,6 +59,11 @@ typedef struct sc_render_desc {
     int deferred;           /* terrains: the intersection programs write the
                                AOVs only, and a full-screen pass shades from
                                them (gl_deferred.c) */
+    int colour_only;        /* shaded frames that write colour and depth, no
+                               AOVs (view_outputs); not read back; manual
+                               termination reads the depth buffer */
+    int time_intersection;  /* the frames' hull draws between two glFinish,
+                               timed (sc_render_stats.intersect_ms) */
 } sc_render_desc;
 
 
@@ -84,6 +89,12 @@ typedef struct sc_render_stats {
     long long intersections; /* fragment programs that ran the intersection
                                (past the early-termination test), counted on
                                the GPU by an atomic add */
+    double intersect_ms;    /* with desc.time_intersection, the last frame's
+                               hull draws, from a glFinish before them to
+                               one after; -1 otherwise */
+    double intersect_query_ms; /* the same draws by a GL_TIME_ELAPSED query
+                               (-1 as above; on llvmpipe it covers the
+                               binning of the draws, not their raster) */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;

@@ -55,11 +55,21 @@ static inline unsigned view_image_output(sc_show view)
     }
 }
 
-/* The outputs a render's programs write: the shaded colour, the AOVs (the
- * read-back and the nearest distances need them) and the view's image. */
-static inline unsigned view_outputs(sc_show view)
+static inline int manual_ert(sc_ray_termination mode)
 {
-    return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(view);
+    return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
+}
+
+/* The outputs a render's programs write: the shaded colour, the AOVs (the
+ * read-back needs them) and the view's image; a colour-only renderer's
+ * programs the colour alone (and depth, which every program writes; manual
+ * early termination then takes its nearest distances from the depth
+ * buffer). */
+static inline unsigned view_outputs(const sc_render_desc *d)
+{
+    if (d->colour_only)
+        return SCG_OUTPUT_SHADE;
+    return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(d->view);
 }
 
 /* The hulls drawn with one program. */
@@ -122,6 +132,14 @@ struct sc_renderer {
     /* The programs' count of intersections run (SCG_BUFFER_COUNTERS), zeroed
      * at the start of each frame and read only when asked for. */
     GLuint counter_buffer;
+    /* desc.time_intersection: the hull draws of sc_renderer_draw's frames
+     * (not an application's, which may time its own) between two glFinish
+     * and in a GL_TIME_ELAPSED query; timed: the last frame was; its wall
+     * time in intersect_ms. */
+    GLuint time_query;
+    int time_hulls, timed;
+    double znear, zfar;      /* the last frame's depth range */
+    double intersect_ms;
     double compile_ms;
     int manhattan;           /* a terrain drawn in Manhattan sets: its order
                                 was left to the default */
@@ -170,11 +188,6 @@ void sc_prepare_group_hulls(sc_renderer *r);
 size_t sc_prepare_gpu_bytes(const sc_renderer *r);
 /* r->desc's defaults filled in (termination, order, batch size). */
 void sc_prepare_defaults(sc_renderer *r);
-
-static inline int manual_ert(sc_ray_termination mode)
-{
-    return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
-}
 
 /* The camera's view-projection moved to the origin (what the programs'
  * sc_view_projection is): proj × view with view's translation dropped. */

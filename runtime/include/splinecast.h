@@ -304,6 +304,20 @@ int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err);
  * optimisation pass that changed it (`gen --dump-ir`). */
 int sc_dump_ir(const char *key, FILE *out, sc_error *err);
 
+/* Floating-point operations of a key's intersection program, counted from
+ * its optimised IR (docs/speed.md: float arithmetic, 1 per lane per op, a
+ * multiply-add 2; dot, cross, length their multiplies and adds): the
+ * program with each instruction once (total), what one iteration costs
+ * (per_iter: the hybrid's loop body over its Newton steps a pass, or what
+ * one more unrolled iteration adds; 0 where a generic program's runtime
+ * loops hide it) and what a run costs besides (fixed). A pixel that ran i
+ * iterations did fixed + i * per_iter. */
+typedef struct sc_key_flops {
+    double total, per_iter, fixed;
+} sc_key_flops;
+
+int sc_count_key_flops(const char *key, sc_key_flops *out, sc_error *err);
+
 /* Figures of one generated stage, as a line of `splinecast audit` shows
  * them (docs/audit.md). */
 typedef struct sc_shader_audit {
@@ -482,6 +496,18 @@ typedef struct sc_renderer_desc {
      * the AOVs and the patches' exact normals (deferred shading, seed 004);
      * the intersection programs then write the AOVs only. Shaded view. */
     int deferred;
+    /* 1: each frame's hull draws (the intersection pass) are timed, from a
+     * glFinish before them to one after, and by a GL_TIME_ELAPSED query
+     * (sc_renderer_info.intersect_ms); the two waits cost a stall, so this
+     * is for benchmarks (`bench --peak`). */
+    int time_intersection;
+    /* 1: shaded frames write the colour and depth alone, no AOVs (surface
+     * ids, uv, distance, point, normal, iterations): for drawing with
+     * sc_draw or sc_draw_gl, not for reading back (sc_read_frame, sc_render
+     * and sc_pick then fail, saying so); manual early termination then
+     * takes the nearest distances from the depth buffer. Needs the shaded
+     * view, not deferred. 0: every frame writes the AOVs. */
+    int colour_only;
 } sc_renderer_desc;
 
 /* Writes what a renderer made with desc would upload for the scene —
@@ -526,9 +552,40 @@ typedef struct sc_renderer_info {
                                   renderer's: the packed scene's) */
     long long intersections;   /* of the last frame: fragment programs that
                                   ran the intersection, counted on the GPU */
+    /* Of the last frame, with sc_renderer_desc.time_intersection (-1
+     * otherwise): the hull draws that run the intersection programs, timed
+     * from a glFinish before them to one after, and by a GL_TIME_ELAPSED
+     * query around them (on llvmpipe the query covers the binning of the
+     * draws, not their rasterization, so it reads low). */
+    double intersect_ms, intersect_query_ms;
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
+
+/* The machine's peak: a full-screen pass of a fragment program made of
+ * `chains` independent dependent chains of `length` vec4 multiply-adds
+ * each (independent, so that the pipeline stays full), drawn `frames`
+ * times after a warm-up draw. Zero means default: 1024×1024, 2 chains of
+ * 256 (on llvmpipe, more chains run out of registers and longer ones out
+ * of instruction cache: docs/speed.md), 5 frames. FLOPs: pixels × chains
+ * × length × 4 lanes × 2. */
+typedef struct sc_peak_desc {
+    int width, height;
+    int chains, length;
+    int frames;
+} sc_peak_desc;
+
+typedef struct sc_peak_info {
+    double flops;              /* of one frame */
+    double gpu_ms;             /* median GL_TIME_ELAPSED of the draw (-1: none) */
+    double wall_ms;            /* median of draw + glFinish, timed on the CPU */
+    double gflops;             /* flops / wall_ms: llvmpipe's GL_TIME_ELAPSED
+                                  covers the binning of the draw, not its
+                                  rasterization */
+} sc_peak_info;
+
+int sc_measure_peak(sc_context_id ctx, const sc_peak_desc *desc, sc_peak_info *out,
+                    sc_error *err);
 
 /* How one surface is drawn: its key, its hulls and the settings behind
  * them, chosen by an accuracy target or given in the desc. */
