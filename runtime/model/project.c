@@ -25,6 +25,12 @@ typedef struct proj {
     double dom[4];         /* u0 u1 v0 v1 */
     int closed[2];
     double tol, dev;
+    /* Set when a point of a curve lies farther than off_limit from the
+     * surface even by the global search: the loop is refused, so nothing
+     * more is refined (a hostile file's off-surface curve would otherwise
+     * split every piece to MAX_DEPTH, each split a global search). */
+    double off_limit;
+    int off;
 } proj;
 
 typedef struct sample {
@@ -144,10 +150,15 @@ static void sample_at(proj *pj, const sc_curve *c, double t, const double guess[
     out->uv[1] = guess[1];
     double d = newton(pj, x, out->uv);
     if (d > pj->tol) {
-        double uv[2];
-        if (global(pj, x, guess, uv) < d) {
+        double uv[2], dg = global(pj, x, guess, uv);
+        if (dg < d) {
             out->uv[0] = uv[0];
             out->uv[1] = uv[1];
+            d = dg;
+        }
+        if (d > pj->off_limit) {
+            pj->off = 1;
+            pj->dev = fmax(pj->dev, d);
         }
     }
     eval(pj, out->uv, p, su, sv);
@@ -208,7 +219,7 @@ static void refine(proj *pj, const sc_curve *c, const sample *a, const sample *b
                    piece_list *out)
 {
     double total, dev = piece_dev(pj, c, a, b, &total);
-    if (dev > pj->tol && depth < MAX_DEPTH) {
+    if (dev > pj->tol && depth < MAX_DEPTH && !pj->off) {
         sample m;
         double guess[2];
         hermite(a, b, 0.5, guess);
@@ -403,7 +414,7 @@ static void seam_side(const proj *pj, piece_list *l, double *seams, int *nseams)
 int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double tol,
                     double off_limit, sc_curve **out, int *nout, double *dev)
 {
-    proj pj = {.s = s, .tol = tol};
+    proj pj = {.s = s, .tol = tol, .off_limit = off_limit};
     sc_surface_domain(s, &pj.dom[0], &pj.dom[1], &pj.dom[2], &pj.dom[3]);
     pj.closed[0] = sc_surface_closed(s, 0);
     pj.closed[1] = sc_surface_closed(s, 1);
@@ -460,7 +471,7 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
         prev[0] = l.s[l.n - 1].uv[0];
         prev[1] = l.s[l.n - 1].uv[1];
         free(l.s);
-        if (pj.dev > off_limit)
+        if (pj.dev > off_limit || pj.off)
             status = SC_FAIL;
     }
     if (status == SC_OK && n > 0 && hypot(first[0] - prev[0], first[1] - prev[1]) > 1e-7 * size)
