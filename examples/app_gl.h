@@ -128,4 +128,24 @@ static void matrices(const double eye[3], const double target[3], double fovy_de
     proj[14] = (float)(2 * zfar * znear / (znear - zfar));
 }
 
+/* The application's framebuffer, bound: colour and a 24-bit depth buffer,
+ * w x h, and the viewport on it; its name, or 0 when it is incomplete. */
+static GLuint make_framebuffer(int w, int h)
+{
+    GLuint fbo, rb[2];
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(2, rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return 0;
+    glViewport(0, 0, w, h);
+    return fbo;
+}
+
 #endif

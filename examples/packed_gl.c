@@ -42,19 +42,9 @@ int main(int argc, char **argv)
     }
     if (!make_gl_context())
         return fail("no OpenGL 4.5 core context from EGL", NULL);
-    GLuint fbo, rb[2];
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glGenRenderbuffers(2, rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-    glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    GLuint fbo = make_framebuffer(w, h);
+    if (!fbo)
         return fail("framebuffer incomplete", NULL);
-    glViewport(0, 0, w, h);
 
     /* Programs from the gen folder (a key it lacks is an error, not a
      * compile), linked ones kept in the cache folder. */
