@@ -136,13 +136,24 @@ long sc_alloc_fail_at(long n)
     return made;
 }
 
+/* The size of this thread's latest failed try, for messages from code that
+ * did not make the allocation itself (sc_alloc_failed_bytes). */
+static _Thread_local size_t failed_bytes;
+
+static void *failed(size_t count, size_t size)
+{
+    failed_bytes = count > SIZE_MAX / size ? SIZE_MAX : count * size;
+    return NULL;
+}
+
 void *sc_try_alloc(size_t count, size_t size)
 {
     if (count == 0 || size == 0)
         count = size = 1;
     if (try_fails() || count > SIZE_MAX / size)
-        return NULL;
-    return calloc(count, size);
+        return failed(count, size);
+    void *p = calloc(count, size);
+    return p ? p : failed(count, size);
 }
 
 void *sc_try_realloc(void *ptr, size_t count, size_t size)
@@ -150,9 +161,12 @@ void *sc_try_realloc(void *ptr, size_t count, size_t size)
     if (count == 0 || size == 0)
         count = size = 1;
     if (try_fails() || count > SIZE_MAX / size)
-        return NULL;
-    return realloc(ptr, count * size);
+        return failed(count, size);
+    void *p = realloc(ptr, count * size);
+    return p ? p : failed(count, size);
 }
+
+size_t sc_alloc_failed_bytes(void) { return failed_bytes; }
 
 int sc_fail_oom(sc_error *err, const char *file, int line, size_t count, size_t size,
                 const char *what)
