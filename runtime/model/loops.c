@@ -150,16 +150,12 @@ static void flatten_bezier(const double *B, int degree, double tol, int depth, i
         poly_push(pl, E[0] / E[2], E[1] / E[2], curve);
         return;
     }
-    size_t npts = (size_t)degree + 1;
-    double *left = sc_try_alloc(npts * 6, sizeof(double)), *right = left + 3 * npts;
-    if (!left) {
-        pl->failed = npts * 6 * sizeof(double);
-        return;
-    }
+    /* check_curves has refused degrees above SC_TRIM_MAX_DEGREE. */
+    assert(degree <= SC_TRIM_MAX_DEGREE);
+    double left[3 * (SC_TRIM_MAX_DEGREE + 1)], right[3 * (SC_TRIM_MAX_DEGREE + 1)];
     sc_bezier_split(B, degree, 3, 3, 0.5, left, right);
     flatten_bezier(left, degree, tol, depth + 1, curve, pl);
     flatten_bezier(right, degree, tol, depth + 1, curve, pl);
-    free(left);
 }
 
 /* The loop as one closed polyline: each curve contributes its vertices
