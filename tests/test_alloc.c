@@ -22,6 +22,7 @@
 #include "splinecast.h"
 #include "test.h"
 #include "trim.h"
+#include "trim_pack.h"
 
 /* What a read may still leave to the aborting sc_alloc (docs/limits.md):
  * handles and records, a 2-point segment, the scratch of a curve of the
@@ -398,6 +399,40 @@ TEST(alloc_inject_trim)
     }
     sc_scene_free(&scene);
     CHECK(failed > 2);
+}
+
+/* The trim blocks a renderer packs for the GPU from the same loops
+ * (runtime/prepare/trim_pack.c). */
+TEST(alloc_inject_trim_pack)
+{
+    sc_scene scene;
+    sc_error err;
+    CHECK_INT(sc_read_scene(test_root("examples/scenes/trim_nested.obj"), &scene, &err), SC_OK);
+    int failed = 0;
+    for (int i = 0; i < scene.nsurfaces; i++) {
+        const sc_surface *s = &scene.surfaces[i];
+        if (!s->nloops)
+            continue;
+        int degree = sc_surface_trim_degree(s);
+        for (long n = 1;; n++) {
+            sc_trim_block block;
+            memset(&err, 0, sizeof err);
+            sc_alloc_fail_at(n);
+            int status = sc_trim_pack(s, degree, &block, &err);
+            long made = sc_alloc_fail_at(0);
+            if (made < n) {
+                CHECK_INT(status, SC_OK);
+                sc_trim_block_free(&block);
+                break;
+            }
+            CHECK_INT(status, SC_FAIL);
+            CHECK(block.texels == NULL);
+            CHECK_CONTAINS(err.message, "out of memory: ");
+            failed++;
+        }
+    }
+    sc_scene_free(&scene);
+    CHECK(failed > 5);
 }
 
 /* Through the API: a scene from text (the OBJ reader) and a terrain from a
