@@ -59,8 +59,12 @@ int sc_api_make_terrain(const sc_scene_desc *d, sc_scene *out, sc_error *err)
     sc_tri_mesh mesh;
     int status = sc_spline_build(&h, scheme, &mesh, err);
     sc_heights_free(&h);
-    if (status != SC_OK)
+    if (status != SC_OK) {
+        /* the building step knows no file: the error names the input */
+        if (err && !err->file[0] && !d->franke)
+            snprintf(err->file, sizeof err->file, "%s", name);
         return SC_FAIL;
+    }
     sc_terrain_scene(&mesh, name, out);
     return SC_OK;
 }

@@ -14,6 +14,7 @@
 
 #include "aov.h"
 #include "heights.h"
+#include "iges_files.h"
 #include "image.h"
 #include "io.h"
 #include "pack_file.h"
@@ -21,12 +22,19 @@
 #include "splinecast.h"
 #include "test.h"
 #include "trim.h"
+#include "trim_pack.h"
+
+/* What a read may still leave to the aborting sc_alloc (docs/limits.md):
+ * handles and records, a 2-point segment, the scratch of a curve of the
+ * highest degree a file may have. */
+enum { SMALL_FIXED_BYTES = 4096 };
 
 /* One read of a real input; returns its status and checks that a failed
  * read leaves nothing behind (it frees what a successful one returns). */
 typedef int (*read_once_fn)(const char *path, sc_error *err, int *left_empty);
 
-/* Runs `read` failing the 1st, 2nd, ... try-allocation in turn. Returns
+/* Runs `read` failing the 1st, 2nd, ... try-allocation in turn (every
+ * step-th when it makes more than max_runs tries). Returns
  * the number of runs that failed (each with an out-of-memory error that
  * names `path`), or -1 after printing what went wrong. */
 static int drive_failures(const char *path, read_once_fn read, int max_runs)
@@ -43,13 +51,21 @@ static int drive_failures(const char *path, read_once_fn read, int max_runs)
         fprintf(stderr, "  %s does not read: %s\n", path, sc_error_text(&err, text, sizeof text));
         return -1;
     }
+    size_t aborting = sc_alloc_aborting_max();
     long tries = sc_alloc_fail_at(0);
+    if (aborting > SMALL_FIXED_BYTES) {
+        fprintf(stderr, "  reading %s made an aborting allocation of %zu bytes\n", path,
+                aborting);
+        return -1;
+    }
     if (tries < 1) {
         fprintf(stderr, "  reading %s made no checked allocation\n", path);
         return -1;
     }
+    /* Every try, or for a large input `max_runs` of them spread evenly. */
+    long step = tries > max_runs ? (tries + max_runs - 1) / max_runs : 1;
     int failed = 0;
-    for (long n = 1; n <= tries && n <= max_runs; n++) {
+    for (long n = 1; n <= tries; n += step) {
         memset(&err, 0, sizeof err);
         empty = 1;
         sc_alloc_fail_at(n);
@@ -71,6 +87,8 @@ static int drive_failures(const char *path, read_once_fn read, int max_runs)
         }
         failed++;
     }
+    fprintf(stderr, "  %s: %ld tries, %d failures reported; largest aborting allocation %zu "
+            "bytes\n", path, tries, failed, aborting);
     return failed;
 }
 
@@ -150,6 +168,112 @@ TEST(alloc_inject_iges)
         REQUIRE_DATA(files[i]);
         CHECK(drive_failures(test_data(files[i]), read_scene_once, 100000) > 0);
     }
+    /* A B-rep whose loops have only model-space edges (projected), and a
+     * surface of degree 12: their 9,000 and 1,000 tries sampled. */
+    static const char *const large[] = {"iges/occ22470.igs", "iges/OCC26138_Torus.igs"};
+    for (size_t i = 0; i < sizeof large / sizeof *large; i++) {
+        REQUIRE_DATA(large[i]);
+        CHECK(drive_failures(test_data(large[i]), read_scene_once, 150) > 100);
+    }
+}
+
+/* IGES entities that go through the analytic constructions, offset
+ * fitting, projection and composite curves (the cases of
+ * test_iges_analytic.c), each file read once per failing try. */
+static const char cubic_126[] =
+    "126,4,3,0,0,1,0,0.,0.,0.,0.,0.4,1.,1.,1.,1.,1.,1.,1.,1.,1.,0.,0.,0.,1.,2.,0.,2.,-1.,1.,3.,"
+    "0.,0.,4.,1.,-1.,0.,1.,0.,0.,0.;";
+
+static int drive_iges(const char *name, const spec *e, int n)
+{
+    char *text = iges_make_iges(e, n);
+    const char *path = test_write_tmp(name, text);
+    free(text);
+    return drive_failures(path, read_scene_once, 100000);
+}
+
+TEST(alloc_inject_iges_analytic)
+{
+    /* Free surfaces: sphere (196), torus (198), revolution (120), tabulated
+     * cylinder (122) and ruled surface (118) of a cubic and a line. */
+    spec free_surfaces[] = {
+        {116, "116,1.,2.,3.,0;", 0, 0, NULL},                 /* D 1 */
+        {123, "123,0.,0.,2.;", 0, 0, NULL},                   /* D 3 */
+        {196, "196,1,1.5;", 0, 0, NULL},                      /* D 5 */
+        {198, "198,1,3,3.,1.;", 0, 0, NULL},                  /* D 7 */
+        {110, "110,0.,0.,0.,0.,0.,1.;", 0, 0, NULL},          /* D 9 */
+        {110, "110,1.,0.,0.,2.,0.,1.;", 0, 0, NULL},          /* D 11 */
+        {120, "120,9,11,0.,3.141592653589793;", 0, 0, NULL}, /* D 13 */
+        {126, cubic_126, 0, 0, NULL},                         /* D 15 */
+        {122, "122,15,1.,1.,5.;", 0, 0, NULL},                /* D 17 */
+        {110, "110,0.,0.,0.,4.,0.,0.;", 0, 0, NULL},          /* D 19 */
+        {118, "118,19,15,0,1;", 0, 0, NULL},                  /* D 21 */
+    };
+    CHECK(drive_iges("inject_free.igs", free_surfaces, 11) > 20);
+    /* A 140 offset of a sphere: the fit's surfaces of up to 385 x 385
+     * points. */
+    spec offset[] = {
+        {116, "116,0.,0.,0.,0;", 0, 0, NULL},     /* D 1 */
+        {196, "196,1,2.;", 0, 0, NULL},           /* D 3 */
+        {140, "140,0.,0.,1.,0.5,3;", 0, 0, NULL}, /* D 5 */
+    };
+    CHECK(drive_iges("inject_offset.igs", offset, 3) > 3);
+    /* Trims of 104 conics: a whole ellipse, a parabola arc closed by a line
+     * in a 102 composite, on planes (128). */
+    spec conics[] = {
+        {128, iges_plane_params(1), 0, 0, NULL},                                         /* D 1 */
+        {124, "124,1.,0.,0.,0.5,0.,1.,0.,0.5,0.,0.,1.,0.;", 0, 0, NULL},                 /* D 3 */
+        {104, "104,11.111111111111111,0.,25.,0.,0.,-1.,0.,0.3,0.,0.3,0.;", 3, 0, NULL},  /* D 5 */
+        {142, "142,0,1,5,0,1;", 0, 0, NULL},                                             /* D 7 */
+        {144, "144,1,1,0,7;", 0, 0, NULL},                                               /* D 9 */
+        {128, iges_plane_params(1), 0, 0, NULL},                                         /* D 11 */
+        {124, "124,1.,0.,0.,0.5,0.,1.,0.,0.2,0.,0.,1.,0.;", 0, 0, NULL},                 /* D 13 */
+        {104, "104,1.,0.,0.,0.,-1.,0.,0.,-0.5,0.25,0.5,0.25;", 13, 0, NULL},             /* D 15 */
+        {110, "110,1.,0.45,0.,0.,0.45,0.;", 0, 0, NULL},                                 /* D 17 */
+        {102, "102,2,15,17;", 0, 0, NULL},                                               /* D 19 */
+        {142, "142,0,11,19,0,1;", 0, 0, NULL},                                           /* D 21 */
+        {144, "144,11,1,0,21;", 0, 0, NULL},                                             /* D 23 */
+    };
+    CHECK(drive_iges("inject_conics.igs", conics, 12) > 10);
+}
+
+TEST(alloc_inject_iges_projected)
+{
+    /* Loops given only in model space: projected onto a 192 cylinder
+     * across its seam (510/508/504), mapped onto a 108 plane (144/142 with
+     * a circle), and a 196 sphere bounded by its seam alone, whose loop
+     * runs across the seam (the surface is extended by a period). */
+    spec cylinder[] = {
+        {116, "116,0.,0.,0.,0;", 0, 0, NULL},                                   /* D 1 */
+        {123, "123,0.,0.,1.;", 0, 0, NULL},                                     /* D 3 */
+        {192, "192,1,3,2.;", 0, 0, NULL},                                       /* D 5 */
+        {100, "100,0.,0.,0.,2.,0.,2.,0.;", 0, 0, NULL},                         /* D 7 */
+        {100, "100,3.,0.,0.,2.,0.,2.,0.;", 0, 0, NULL},                         /* D 9 */
+        {110, "110,2.,0.,0.,2.,0.,3.;", 0, 0, NULL},                            /* D 11 */
+        {504, "504,3,7,0,0,0,0,9,0,0,0,0,11,0,0,0,0;", 0, 0, NULL},             /* D 13 */
+        {508, "508,4,0,13,1,1,0,0,13,3,1,0,0,13,2,0,0,0,13,3,0,0;", 0, 0, NULL}, /* D 15 */
+        {510, "510,5,1,1,15;", 0, 0, NULL},                                     /* D 17 */
+    };
+    CHECK(drive_iges("inject_cylinder.igs", cylinder, 9) > 20);
+    spec plane[] = {
+        {108, "108,0.,0.,1.,1.,0,0.,0.,0.,0.;", 0, 0, NULL}, /* D 1 */
+        {100, "100,1.,0.5,0.5,1.,0.5,1.,0.5;", 0, 0, NULL},   /* D 3 */
+        {142, "142,0,1,0,3,2;", 0, 0, NULL},                  /* D 5 */
+        {144, "144,1,1,0,5;", 0, 0, NULL},                    /* D 7 */
+    };
+    CHECK(drive_iges("inject_plane.igs", plane, 4) > 3);
+    spec sphere[] = {
+        {116, "116,0.,0.,0.,0;", 0, 0, NULL}, /* D 1 */
+        {196, "196,1,2.;", 0, 0, NULL},       /* D 3 */
+        {126, "126,4,2,1,0,0,0,0.,0.,0.,.5,.5,1.,1.,1.,"
+              "1.,.7071067811865476,1.,.7071067811865476,1.,"
+              "0.,0.,2.,2.,0.,2.,2.,0.,0.,2.,0.,-2.,0.,0.,-2.,0.,1.,0.,1.,0.;",
+         0, 0, NULL},                                            /* D 5 */
+        {504, "504,1,5,0,0,0,0;", 0, 0, NULL},                   /* D 7 */
+        {508, "508,2,0,7,1,1,0,0,7,1,0,0;", 0, 0, NULL},         /* D 9 */
+        {510, "510,3,1,1,9;", 0, 0, NULL},                       /* D 11 */
+    };
+    CHECK(drive_iges("inject_sphere.igs", sphere, 6) > 20);
 }
 
 static int scan_step_once(const char *path, sc_error *err, int *left_empty)
@@ -174,6 +298,17 @@ TEST(alloc_inject_step_scan)
      * process, whose memory is its own limit: docs/step.md). */
     REQUIRE_DATA("step/bug3883_xr2-ct-214_bolt.stp");
     CHECK(drive_failures(test_data("step/bug3883_xr2-ct-214_bolt.stp"), scan_step_once, 1000) > 0);
+}
+
+TEST(alloc_inject_step)
+{
+    /* The whole STEP read: our pre-scan, then the surfaces the reader's
+     * child process sends back, taken into the scene (the child's own
+     * memory has its own limit: docs/step.md). Each read starts Open
+     * CASCADE anew: 60 of its 480 tries, spread evenly. */
+    REQUIRE_DATA("step/bug3883_xr2-ct-214_bolt.stp");
+    CHECK(drive_failures(test_data("step/bug3883_xr2-ct-214_bolt.stp"), read_scene_once, 60) >
+          50);
 }
 
 TEST(alloc_inject_images)
@@ -264,6 +399,40 @@ TEST(alloc_inject_trim)
     }
     sc_scene_free(&scene);
     CHECK(failed > 2);
+}
+
+/* The trim blocks a renderer packs for the GPU from the same loops
+ * (runtime/prepare/trim_pack.c). */
+TEST(alloc_inject_trim_pack)
+{
+    sc_scene scene;
+    sc_error err;
+    CHECK_INT(sc_read_scene(test_root("examples/scenes/trim_nested.obj"), &scene, &err), SC_OK);
+    int failed = 0;
+    for (int i = 0; i < scene.nsurfaces; i++) {
+        const sc_surface *s = &scene.surfaces[i];
+        if (!s->nloops)
+            continue;
+        int degree = sc_surface_trim_degree(s);
+        for (long n = 1;; n++) {
+            sc_trim_block block;
+            memset(&err, 0, sizeof err);
+            sc_alloc_fail_at(n);
+            int status = sc_trim_pack(s, degree, &block, &err);
+            long made = sc_alloc_fail_at(0);
+            if (made < n) {
+                CHECK_INT(status, SC_OK);
+                sc_trim_block_free(&block);
+                break;
+            }
+            CHECK_INT(status, SC_FAIL);
+            CHECK(block.texels == NULL);
+            CHECK_CONTAINS(err.message, "out of memory: ");
+            failed++;
+        }
+    }
+    sc_scene_free(&scene);
+    CHECK(failed > 5);
 }
 
 /* Through the API: a scene from text (the OBJ reader) and a terrain from a

@@ -123,7 +123,7 @@ TEST(geometry_curve_restrict)
     sc_curve c, r;
     test_curve(&c, 2, 5);
     sc_curve_copy(&r, &c);
-    sc_curve_restrict(&r, 2.25, 4.0);
+    CHECK_INT(sc_curve_restrict(&r, 2.25, 4.0), SC_OK);
     double t0, t1;
     sc_curve_domain(&r, &t0, &t1);
     CHECK(t0 == 2.25 && t1 == 4.0);
@@ -132,14 +132,14 @@ TEST(geometry_curve_restrict)
     sc_curve_free(&r);
     /* An end within rounding of a knot is the knot: no sliver span. */
     sc_curve_copy(&r, &c);
-    sc_curve_restrict(&r, 3.5 + 1e-12, 7);
+    CHECK_INT(sc_curve_restrict(&r, 3.5 + 1e-12, 7), SC_OK);
     sc_curve_domain(&r, &t0, &t1);
     CHECK(t0 == 3.5 && t1 == 5);
     CHECK_INT(r.ncp, 4);
     sc_curve_free(&r);
     /* An empty range keeps the whole domain. */
     sc_curve_copy(&r, &c);
-    sc_curve_restrict(&r, 4, 3);
+    CHECK_INT(sc_curve_restrict(&r, 4, 3), SC_OK);
     CHECK(memcmp(r.knots, c.knots, 9 * sizeof(double)) == 0);
     sc_curve_free(&r);
     sc_curve_free(&c);
@@ -186,8 +186,8 @@ TEST(geometry_surface_restrict_keeps_loops)
     sc_surface_copy(&r, &s);
     r.nloops = 1;
     r.loops = sc_alloc(1, sizeof(sc_loop));
-    sc_surface_restrict(&r, 0, 0.5, 1.5);
-    sc_surface_restrict(&r, 1, 1, 2);
+    CHECK_INT(sc_surface_try_restrict(&r, 0, 0.5, 1.5), SC_OK);
+    CHECK_INT(sc_surface_try_restrict(&r, 1, 1, 2), SC_OK);
     CHECK_INT(r.nloops, 1);
     double u0, u1, v0, v1;
     sc_surface_domain(&r, &u0, &u1, &v0, &v1);

@@ -90,10 +90,25 @@ static void out_of_memory(size_t count, size_t size)
     abort();
 }
 
+/* The largest aborting allocation since sc_alloc_fail_at was last called
+ * (sc_alloc_aborting_max). */
+static size_t aborting_max;
+
+static void note_aborting(size_t count, size_t size)
+{
+    size_t bytes = count > SIZE_MAX / size ? SIZE_MAX : count * size;
+    size_t seen = __atomic_load_n(&aborting_max, __ATOMIC_RELAXED);
+    while (bytes > seen &&
+           !__atomic_compare_exchange_n(&aborting_max, &seen, bytes, 1, __ATOMIC_RELAXED,
+                                        __ATOMIC_RELAXED))
+        ;
+}
+
 void *sc_alloc(size_t count, size_t size)
 {
     if (count == 0 || size == 0)
         count = size = 1;
+    note_aborting(count, size);
     void *p = calloc(count, size);
     if (!p)
         out_of_memory(count, size);
@@ -104,6 +119,7 @@ void *sc_realloc(void *ptr, size_t count, size_t size)
 {
     if (count == 0 || size == 0)
         count = size = 1;
+    note_aborting(count, size);
     if (count > SIZE_MAX / size)
         out_of_memory(count, size);
     void *p = realloc(ptr, count * size);
@@ -131,9 +147,20 @@ static int try_fails(void)
 
 long sc_alloc_fail_at(long n)
 {
+    __atomic_store_n(&aborting_max, 0, __ATOMIC_RELAXED);
     long made = __atomic_exchange_n(&try_count, 0, __ATOMIC_RELAXED);
     try_fail_at = n > 0 ? n : 0;
     return made;
+}
+
+/* The size of this thread's latest failed try, for messages from code that
+ * did not make the allocation itself (sc_alloc_failed_bytes). */
+static _Thread_local size_t failed_bytes;
+
+static void *failed(size_t count, size_t size)
+{
+    failed_bytes = count > SIZE_MAX / size ? SIZE_MAX : count * size;
+    return NULL;
 }
 
 void *sc_try_alloc(size_t count, size_t size)
@@ -141,8 +168,9 @@ void *sc_try_alloc(size_t count, size_t size)
     if (count == 0 || size == 0)
         count = size = 1;
     if (try_fails() || count > SIZE_MAX / size)
-        return NULL;
-    return calloc(count, size);
+        return failed(count, size);
+    void *p = calloc(count, size);
+    return p ? p : failed(count, size);
 }
 
 void *sc_try_realloc(void *ptr, size_t count, size_t size)
@@ -150,9 +178,14 @@ void *sc_try_realloc(void *ptr, size_t count, size_t size)
     if (count == 0 || size == 0)
         count = size = 1;
     if (try_fails() || count > SIZE_MAX / size)
-        return NULL;
-    return realloc(ptr, count * size);
+        return failed(count, size);
+    void *p = realloc(ptr, count * size);
+    return p ? p : failed(count, size);
 }
+
+size_t sc_alloc_failed_bytes(void) { return failed_bytes; }
+
+size_t sc_alloc_aborting_max(void) { return __atomic_load_n(&aborting_max, __ATOMIC_RELAXED); }
 
 int sc_fail_oom(sc_error *err, const char *file, int line, size_t count, size_t size,
                 const char *what)

@@ -52,6 +52,14 @@ int sc_fail_oom(sc_error *err, const char *file, int line, size_t count, size_t 
  * environment variable SC_ALLOC_FAIL=N does the same from the start of a
  * process (the command line's tests). */
 long sc_alloc_fail_at(long n);
+/* For tests: the largest sc_alloc / sc_realloc (in bytes) since
+ * sc_alloc_fail_at was last called, so that a test can check that a read
+ * left only small fixed allocations to the aborting form. */
+size_t sc_alloc_aborting_max(void);
+/* The bytes the calling thread's latest failed sc_try_alloc / sc_try_realloc
+ * asked for: what a caller reports when the failure happened deep inside
+ * an operation that only says that it failed. */
+size_t sc_alloc_failed_bytes(void);
 
 /* Whole file into memory (NUL-terminated, the NUL not counted in *size),
  * at most `max` bytes, checked as the data arrives (a device or a pipe can

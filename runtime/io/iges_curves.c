@@ -16,13 +16,30 @@ static int list_dim(const curve_list *l)
     return l->dim ? l->dim : 2;
 }
 
+/* A new curve of the list, its arrays allocated; NULL (the error recorded)
+ * when memory runs out. */
+static sc_curve *new_curve(reader *r, const params *p, curve_list *out, int degree, int ncp)
+{
+    sc_curve *c = iges_list_push(out);
+    if (!c) {
+        iges_fail_oom(r, p->entity, sc_alloc_failed_bytes(), "the list of curves");
+        return NULL;
+    }
+    if (sc_curve_try_alloc(c, list_dim(out), degree, ncp)) {
+        iges_fail_oom(r, p->entity, sc_curve_bytes(list_dim(out), degree, ncp), "the curve");
+        return NULL;
+    }
+    return c;
+}
+
 static int read_110(reader *r, const params *p, const double m[12], curve_list *out)
 {
     double v[6];
     if (iges_leading_reals(r, p, 6, v))
         return SC_FAIL;
-    sc_curve *c = iges_list_push(out);
-    sc_curve_alloc(c, list_dim(out), 1, 2);
+    sc_curve *c = new_curve(r, p, out, 1, 2);
+    if (!c)
+        return SC_FAIL;
     c->knots[0] = c->knots[1] = 0;
     c->knots[2] = c->knots[3] = 1;
     iges_put_point(c, 0, m, v[0], v[1], v[2], 1);
@@ -53,8 +70,9 @@ static int read_100(reader *r, const params *p, const double m[12], curve_list *
     if (pieces < 1)
         pieces = 1;
     double half = sweep / pieces / 2, w = cos(half);
-    sc_curve *c = iges_list_push(out);
-    sc_curve_alloc(c, list_dim(out), 2, 2 * pieces + 1);
+    sc_curve *c = new_curve(r, p, out, 2, 2 * pieces + 1);
+    if (!c)
+        return SC_FAIL;
     for (int i = 0; i < 3; i++) {
         c->knots[i] = 0;
         c->knots[2 * pieces + 1 + i] = pieces;
@@ -106,9 +124,13 @@ static int read_104(reader *r, const params *p, const double m[12], curve_list *
             sweep = 2 * M_PI;
         while (sweep <= 0)
             sweep += 2 * M_PI;
-        sc_curve e3, *dst = iges_list_push(out);
-        sc_ellipse_arc(3, ctr, ex, ey, rx, ry, a0, a0 + sweep, &e3);
-        sc_curve_alloc(dst, list_dim(out), 2, e3.ncp);
+        sc_curve e3, *dst;
+        if (sc_ellipse_arc(3, ctr, ex, ey, rx, ry, a0, a0 + sweep, &e3))
+            return iges_fail_oom(r, p->entity, sc_alloc_failed_bytes(), "the ellipse");
+        if (!(dst = new_curve(r, p, out, 2, e3.ncp))) {
+            sc_curve_free(&e3);
+            return SC_FAIL;
+        }
         memcpy(dst->knots, e3.knots, sizeof(double) * (size_t)(e3.ncp + 3));
         for (int i = 0; i < e3.ncp; i++) {
             const double *q = e3.cp + 4 * i;
@@ -127,8 +149,9 @@ static int read_104(reader *r, const params *p, const double m[12], curve_list *
             return iges_fail(r, p->entity, iges_line(r, p, 8), "parabola arc with parallel end "
                              "tangents");
         double k = ((xe - xs) * te[1] - (ye - ys) * te[0]) / den;
-        sc_curve *c = iges_list_push(out);
-        sc_curve_alloc(c, list_dim(out), 2, 3);
+        sc_curve *c = new_curve(r, p, out, 2, 3);
+        if (!c)
+            return SC_FAIL;
         c->knots[0] = c->knots[1] = c->knots[2] = 0;
         c->knots[3] = c->knots[4] = c->knots[5] = 1;
         iges_put_point(c, 0, m, xs, ys, zt, 1);
@@ -165,8 +188,9 @@ static int read_104(reader *r, const params *p, const double m[12], curve_list *
     double sign = xs_ < 0 ? -1 : 1, s0 = asinh(ys_ / b), s1 = asinh(ye_ / b);
     int pieces = (int)ceil(fabs(s1 - s0) / 2);
     pieces = pieces < 1 ? 1 : pieces > 64 ? 64 : pieces;
-    sc_curve *k = iges_list_push(out);
-    sc_curve_alloc(k, list_dim(out), 2, 2 * pieces + 1);
+    sc_curve *k = new_curve(r, p, out, 2, 2 * pieces + 1);
+    if (!k)
+        return SC_FAIL;
     for (int i = 0; i < 3; i++) {
         k->knots[i] = 0;
         k->knots[2 * pieces + 1 + i] = pieces;
@@ -205,7 +229,9 @@ static int read_112(reader *r, const params *p, const double m[12], curve_list *
         return SC_FAIL;
     if (n < 1)
         return iges_fail(r, p->entity, iges_line(r, p, 4), "no segments");
-    double *bp = sc_alloc((size_t)n + 1, sizeof(double));
+    double *bp = sc_try_alloc((size_t)n + 1, sizeof(double));
+    if (!bp)
+        return iges_fail_oom(r, p->entity, ((size_t)n + 1) * sizeof(double), "breakpoints");
     for (int i = 0; i <= n; i++)
         if (iges_real(r, p, 5 + i, &bp[i])) {
             free(bp);
@@ -217,8 +243,11 @@ static int read_112(reader *r, const params *p, const double m[12], curve_list *
             return iges_fail(r, p->entity, iges_line(r, p, 5 + i), "breakpoints do not "
                              "increase (%.17g, %.17g)", bp[i], bp[i + 1]);
         }
-    sc_curve *c = iges_list_push(out);
-    sc_curve_alloc(c, list_dim(out), 3, 3 * n + 1);
+    sc_curve *c = new_curve(r, p, out, 3, 3 * n + 1);
+    if (!c) {
+        free(bp);
+        return SC_FAIL;
+    }
     for (int k = 0; k < 4; k++) {
         c->knots[k] = bp[0];
         c->knots[3 * n + 1 + k] = bp[n];
@@ -265,9 +294,9 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     long long n = (long long)k + 1, nk = n + deg + 1;
     if (iges_need(r, p, 6 + nk + 4 * n))
         return SC_FAIL;
-    sc_curve *c = iges_list_push(out);
-    if (sc_curve_try_alloc(c, list_dim(out), deg, (int)n))
-        return iges_fail_oom(r, e, sc_curve_bytes(list_dim(out), deg, (int)n), "the curve");
+    sc_curve *c = new_curve(r, p, out, deg, (int)n);
+    if (!c)
+        return SC_FAIL;
     int wi = c->dim, st = c->dim + 1;
     int at = 7;
     if (iges_read_knots(r, p, at, c->knots, (int)nk, deg, "curve"))
@@ -294,17 +323,16 @@ static int read_126(reader *r, const params *p, const double m[12], curve_list *
     }
     at += 3 * (int)n;
     /* V(0), V(1): the used part of the parameter range. */
-    double range[2];
+    double range[2] = {c->knots[deg], c->knots[n]};
     if (p->ntok - 1 >= at + 1) {
-        if (iges_real(r, p, at, &range[0]) || iges_real(r, p, at + 1, &range[1]))
+        double v[2];
+        if (iges_real(r, p, at, &v[0]) || iges_real(r, p, at + 1, &v[1]))
             return SC_FAIL;
-        if (range[0] < range[1])
-            sc_curve_restrict(c, range[0], range[1]);
-        else
-            sc_curve_restrict(c, c->knots[deg], c->knots[n]);
-    } else {
-        sc_curve_restrict(c, c->knots[deg], c->knots[n]);
+        if (v[0] < v[1])
+            memcpy(range, v, sizeof range);
     }
+    if (sc_curve_restrict(c, range[0], range[1]))
+        return iges_fail_oom(r, e, sc_alloc_failed_bytes(), "restricting the curve");
     return SC_OK;
 }
 

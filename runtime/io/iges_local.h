@@ -123,6 +123,7 @@ int iges_check_knots(reader *r, const params *p, int first_param, const double *
                              int nk, int degree, const char *what);
 int iges_read_knots(reader *r, const params *p, int at, double *k, int nk, int degree,
                             const char *what);
+/* A zeroed curve appended to the list; NULL when memory runs out. */
 sc_curve *iges_list_push(curve_list *l);
 void iges_list_free(curve_list *l);
 void iges_put_point(sc_curve *c, int i, const double m[12], double x, double y, double z,
@@ -152,10 +153,14 @@ typedef struct iges_surface {
  * SC_FAIL. */
 int iges_read_surface(reader *r, int e, iges_surface *sf);
 /* Builds sf->nurbs of a need_bounds surface to cover the model-space
- * loops (3D curves in its object space). SC_FAIL when they are empty. */
+ * loops (3D curves in its object space): SC_OK, IGES_NO_BOUNDS when they
+ * are empty (or only reach past a cone's apex), SC_FAIL when memory runs
+ * out. */
+enum { IGES_NO_BOUNDS = 1 };
 int iges_bound_surface(iges_surface *sf, const curve_list *loops, int n);
-/* 3D curves on a plane surface to its (u, v): exact (affine). */
-void iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list *out);
+/* 3D curves on a plane surface to its (u, v): exact (affine). SC_FAIL when
+ * memory runs out (the curves made so far stay in `out`). */
+int iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list *out);
 
 /* iges_faces.c: the model-space curves of loop entity e (142, 141, 508)
  * in loop order, mapped by to_obj into the surface's object space: SC_OK,

@@ -457,9 +457,14 @@ int iges_read_knots(reader *r, const params *p, int at, double *k, int nk, int d
 
 sc_curve *iges_list_push(curve_list *l)
 {
-    if (l->n == l->cap)
-        l->items = sc_realloc(l->items, (size_t)(l->cap = l->cap ? 2 * l->cap : 8),
-                              sizeof(sc_curve));
+    if (l->n == l->cap) {
+        int cap = l->cap ? 2 * l->cap : 8;
+        sc_curve *grown = sc_try_realloc(l->items, (size_t)cap, sizeof(sc_curve));
+        if (!grown)
+            return NULL;
+        l->items = grown;
+        l->cap = cap;
+    }
     sc_curve *c = &l->items[l->n++];
     memset(c, 0, sizeof *c);
     return c;

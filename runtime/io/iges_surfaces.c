@@ -79,18 +79,22 @@ static int read_128_into(reader *r, const params *p, sc_surface *s)
     at += 3 * npts;
     /* U(0), U(1), V(0), V(1): the used part of the domain. */
     double range[4];
+    int restricted = SC_OK;
     if (p->ntok - 1 >= at + 3) {
         for (int i = 0; i < 4; i++)
             if (iges_real(r, p, at + i, &range[i]))
                 return SC_FAIL;
         if (range[0] < range[1])
-            sc_surface_restrict(s, 0, range[0], range[1]);
-        if (range[2] < range[3])
-            sc_surface_restrict(s, 1, range[2], range[3]);
+            restricted = sc_surface_try_restrict(s, 0, range[0], range[1]);
+        if (range[2] < range[3] && restricted == SC_OK)
+            restricted = sc_surface_try_restrict(s, 1, range[2], range[3]);
     } else {
-        sc_surface_restrict(s, 0, s->knots_u[m1], s->knots_u[s->nu]);
-        sc_surface_restrict(s, 1, s->knots_v[m2], s->knots_v[s->nv]);
+        restricted = sc_surface_try_restrict(s, 0, s->knots_u[m1], s->knots_u[s->nu]);
+        if (restricted == SC_OK)
+            restricted = sc_surface_try_restrict(s, 1, s->knots_v[m2], s->knots_v[s->nv]);
     }
+    if (restricted)
+        return iges_fail_oom(r, e, sc_alloc_failed_bytes(), "restricting the surface");
     sc_surface_update_rational(s);
     sc_error check;
     if (sc_surface_check(s, &check))
@@ -186,9 +190,11 @@ static int one_curve(reader *r, const params *owner, int i, sc_curve *out)
         status = iges_fail(r, e, 0, "curve without pieces");
     if (status == SC_OK) {
         iges_orient_chain(&l);
-        status = sc_curve_join(l.items, l.n, out) ? SC_FAIL : SC_OK;
-        if (status)
-            iges_fail(r, e, 0, "composite curve whose members do not meet");
+        int joined = sc_curve_join(l.items, l.n, out);
+        if (joined == SC_FAIL)
+            status = iges_fail_oom(r, e, sc_alloc_failed_bytes(), "the joined curve");
+        else if (joined)
+            status = iges_fail(r, e, 0, "composite curve whose members do not meet");
     }
     iges_list_free(&l);
     return status == SC_OK ? SC_OK : status == SC_FAIL ? SC_FAIL : 0;
@@ -255,8 +261,10 @@ static int read_120(reader *r, const params *p, iges_surface *sf)
     status = one_curve(r, p, 2, &gen);
     if (status != SC_OK)
         return status;
-    sc_revolve(&gen, a, dir, sa, fmin(ta, sa + 2 * M_PI), &sf->nurbs);
+    status = sc_revolve(&gen, a, dir, sa, fmin(ta, sa + 2 * M_PI), &sf->nurbs);
     sc_curve_free(&gen);
+    if (status)
+        return iges_fail_oom(r, p->entity, sc_alloc_failed_bytes(), "the surface");
     return 1;
 }
 
@@ -277,8 +285,10 @@ static int read_122(reader *r, const params *p, iges_surface *sf)
         start[i] = c.cp[i] / c.cp[3];
         d[i] = l[i] - start[i];
     }
-    sc_extrude(&c, d, &sf->nurbs);
+    status = sc_extrude(&c, d, &sf->nurbs);
     sc_curve_free(&c);
+    if (status)
+        return iges_fail_oom(r, p->entity, sc_alloc_failed_bytes(), "the surface");
     return 1;
 }
 
@@ -300,22 +310,39 @@ static int read_118(reader *r, const params *p, iges_surface *sf)
     }
     if (dirflg == 1)
         sc_curve_reverse(&b);
-    sc_ruled(&a, &b, &sf->nurbs);
+    status = sc_ruled(&a, &b, &sf->nurbs);
     sc_curve_free(&a);
     sc_curve_free(&b);
+    if (status)
+        return iges_fail_oom(r, p->entity, sc_alloc_failed_bytes(), "the surface");
     return 1;
 }
 
 /* A half circle of radius rr about c in the plane of x and z, from −z
  * up to +z through +x (a sphere's generatrix), or a full circle of radius
  * rr about c + R·x (a torus's). */
-static void circle_in(const double c[3], const double x[3], const double z[3], double R,
-                      double rr, double a0, double a1, sc_curve *out)
+static int circle_in(const double c[3], const double x[3], const double z[3], double R,
+                     double rr, double a0, double a1, sc_curve *out)
 {
     double ctr[3];
     for (int d = 0; d < 3; d++)
         ctr[d] = c[d] + R * x[d];
-    sc_ellipse_arc(3, ctr, x, z, rr, rr, a0, a1, out);
+    return sc_ellipse_arc(3, ctr, x, z, rr, rr, a0, a1, out);
+}
+
+/* A circle turned about the frame's axis: a sphere or a torus. */
+static int revolved_circle(reader *r, int e, iges_surface *sf, double R, double rr, double a0,
+                           double a1)
+{
+    sc_curve gen;
+    int status = circle_in(sf->o, sf->x, sf->z, R, rr, a0, a1, &gen);
+    if (status == SC_OK) {
+        status = sc_revolve(&gen, sf->o, sf->z, 0, 2 * M_PI, &sf->nurbs);
+        sc_curve_free(&gen);
+    }
+    if (status)
+        return iges_fail_oom(r, e, sc_alloc_failed_bytes(), "the surface");
+    return 1;
 }
 
 /* 114 parametric spline surface: CTYPE, PTYPE, M, N, TU(M+1), TV(N+1),
@@ -448,6 +475,8 @@ static int read_140(reader *r, const params *p, iges_surface *sf)
     double dev, tol = OFFSET_TOL * box_size(&b.nurbs);
     status = sc_offset_fit(&b.nurbs, d, tol, &sf->nurbs, &dev);
     sc_surface_free(&b.nurbs);
+    if (status == SC_FAIL)
+        return iges_fail_oom(r, e, sc_alloc_failed_bytes(), "the fitted offset surface");
     r->scene->offset_surfaces++;
     r->scene->offset_dev = fmax(r->scene->offset_dev, dev);
     if (status)
@@ -531,13 +560,7 @@ int iges_read_surface(reader *r, int e, iges_surface *sf)
             frame_x(sf->z, NULL, sf->x);
             cross(sf->z, sf->x, sf->y);
         }
-        {
-            sc_curve gen;
-            circle_in(sf->o, sf->x, sf->z, 0, rad[0], -M_PI / 2, M_PI / 2, &gen);
-            sc_revolve(&gen, sf->o, sf->z, 0, 2 * M_PI, &sf->nurbs);
-            sc_curve_free(&gen);
-        }
-        return 1;
+        return revolved_circle(r, e, sf, 0, rad[0], -M_PI / 2, M_PI / 2);
     case 198: /* LOC, AXIS, MAJRAD, MINRAD, REFD */
         if (iges_params(r, e, &p) || iges_need(r, &p, 4) || iges_real(r, &p, 3, &rad[0]) ||
             iges_real(r, &p, 4, &rad[1]))
@@ -546,13 +569,7 @@ int iges_read_surface(reader *r, int e, iges_surface *sf)
             return iges_fail(r, e, iges_line(r, &p, 3), "torus radii %g and %g", rad[0], rad[1]);
         if (analytic_frame(r, &p, 1, 2, 5, sf))
             return SC_FAIL;
-        {
-            sc_curve gen;
-            circle_in(sf->o, sf->x, sf->z, rad[0], rad[1], 0, 2 * M_PI, &gen);
-            sc_revolve(&gen, sf->o, sf->z, 0, 2 * M_PI, &sf->nurbs);
-            sc_curve_free(&gen);
-        }
-        return 1;
+        return revolved_circle(r, e, sf, rad[0], rad[1], 0, 2 * M_PI);
     case 114:
     case 140:
         if (iges_params(r, e, &p))
@@ -615,12 +632,11 @@ int iges_bound_surface(iges_surface *sf, const curve_list *loops, int n)
     double lo[3], hi[3];
     loop_box(sf, loops, n, lo, hi);
     if (!(lo[0] <= hi[0]))
-        return SC_FAIL;
+        return IGES_NO_BOUNDS;
     if (sf->need_bounds == IGES_BOUND_PLANE) {
         double mu = 0.01 * (hi[0] - lo[0]) + 1e-9, mv = 0.01 * (hi[1] - lo[1]) + 1e-9;
-        sc_plane_patch(sf->o, sf->x, sf->y, lo[0] - mu, hi[0] + mu, lo[1] - mv, hi[1] + mv,
-                       &sf->nurbs);
-        return SC_OK;
+        return sc_plane_patch(sf->o, sf->x, sf->y, lo[0] - mu, hi[0] + mu, lo[1] - mv,
+                              hi[1] + mv, &sf->nurbs);
     }
     /* cylinder or cone: the axis range of the loops, a little more; a cone
      * stops at its apex */
@@ -635,25 +651,27 @@ int iges_bound_surface(iges_surface *sf, const curve_list *loops, int n)
             h1 = fmin(h1, apex);
     }
     if (!(h1 > h0))
-        return SC_FAIL;
+        return IGES_NO_BOUNDS;
     double p0[3], p1[3];
     for (int d = 0; d < 3; d++) {
         p0[d] = sf->o[d] + h0 * sf->z[d] + fmax(0, sf->radius + sf->slope * h0) * sf->x[d];
         p1[d] = sf->o[d] + h1 * sf->z[d] + fmax(0, sf->radius + sf->slope * h1) * sf->x[d];
     }
     sc_curve gen;
-    sc_line3(p0, p1, &gen);
-    sc_revolve(&gen, sf->o, sf->z, 0, 2 * M_PI, &sf->nurbs);
+    if (sc_line3(p0, p1, &gen))
+        return SC_FAIL;
+    int status = sc_revolve(&gen, sf->o, sf->z, 0, 2 * M_PI, &sf->nurbs);
     sc_curve_free(&gen);
-    return SC_OK;
+    return status;
 }
 
-void iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list *out)
+int iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list *out)
 {
     for (int c = 0; c < in->n; c++) {
         const sc_curve *src = &in->items[c];
         sc_curve *dst = iges_list_push(out);
-        sc_curve_alloc(dst, 2, src->degree, src->ncp);
+        if (!dst || sc_curve_try_alloc(dst, 2, src->degree, src->ncp))
+            return SC_FAIL;
         memcpy(dst->knots, src->knots, sizeof(double) * (size_t)(src->ncp + src->degree + 1));
         for (int i = 0; i < src->ncp; i++) {
             const double *q = src->cp + 4 * i;
@@ -665,4 +683,5 @@ void iges_plane_curves(const iges_surface *sf, const curve_list *in, curve_list 
             dst->cp[3 * i + 2] = q[3];
         }
     }
+    return SC_OK;
 }

@@ -141,16 +141,23 @@ static int loop_of(reader *r, int e, curve_list *out)
     return status;
 }
 
-static void add_loop(sc_surface *s, int is_hole, curve_list *l)
+/* Moves the curves of l into a new loop of the surface (l left empty);
+ * SC_FAIL (l kept) when the loop array cannot grow. */
+static int add_loop(reader *r, int e, sc_surface *s, int is_hole, curve_list *l)
 {
-    s->loops = sc_realloc(s->loops, (size_t)s->nloops + 1, sizeof(sc_loop));
+    sc_loop *grown = sc_try_realloc(s->loops, (size_t)s->nloops + 1, sizeof(sc_loop));
+    if (!grown)
+        return iges_fail_oom(r, e, ((size_t)s->nloops + 1) * sizeof(sc_loop),
+                             "the surface's loops");
+    s->loops = grown;
     s->loops[s->nloops++] = (sc_loop){is_hole, l->n, l->items};
     memset(l, 0, sizeof *l);
+    return SC_OK;
 }
 
 /* The domain rectangle as an outer loop: a surface whose outer boundary is
  * its domain but which has holes keeps its parity test simple. */
-static void add_domain_loop(sc_surface *s)
+static int add_domain_loop(reader *r, int e, sc_surface *s)
 {
     double u0, u1, v0, v1;
     sc_surface_domain(s, &u0, &u1, &v0, &v1);
@@ -158,7 +165,10 @@ static void add_domain_loop(sc_surface *s)
     curve_list l = {0};
     for (int i = 0; i < 4; i++) {
         sc_curve *c = iges_list_push(&l);
-        sc_curve_alloc(c, 2, 1, 2);
+        if (!c || sc_curve_try_alloc(c, 2, 1, 2)) {
+            iges_list_free(&l);
+            return iges_fail_oom(r, e, sc_alloc_failed_bytes(), "the domain's loop");
+        }
         c->knots[0] = c->knots[1] = 0;
         c->knots[2] = c->knots[3] = 1;
         for (int k = 0; k < 2; k++) {
@@ -167,11 +177,15 @@ static void add_domain_loop(sc_surface *s)
             c->cp[3 * k + 2] = 1;
         }
     }
-    add_loop(s, 0, &l);
+    if (add_loop(r, e, s, 0, &l)) {
+        iges_list_free(&l);
+        return SC_FAIL;
+    }
     /* The outer loop goes first. */
     sc_loop outer = s->loops[s->nloops - 1];
     memmove(s->loops + 1, s->loops, sizeof(sc_loop) * (size_t)(s->nloops - 1));
     s->loops[0] = outer;
+    return SC_OK;
 }
 
 static void curve_end(const sc_curve *c, int last, double p[2])
@@ -222,7 +236,10 @@ static int attach_pcurves(reader *r, int e, int is_hole, sc_surface *s, int *add
             return LOOP_NO_PCURVE;
         }
         if (l.n > 0) {
-            add_loop(s, is_hole, &l);
+            if (add_loop(r, e, s, is_hole, &l)) {
+                iges_list_free(&l);
+                return SC_FAIL;
+            }
             *added = 1;
         }
     }
@@ -352,22 +369,29 @@ static int attach_model(reader *r, const iges_surface *sf, sc_surface *s, int is
     curve_list l = {0};
     double dev = 0;
     if (sf->need_bounds == IGES_BOUND_PLANE) {
-        iges_plane_curves(sf, l3, &l);
+        if (iges_plane_curves(sf, l3, &l)) {
+            iges_list_free(&l);
+            return iges_fail_oom(r, r->cur_owner, sc_alloc_failed_bytes(),
+                                 "a trim loop mapped onto its plane");
+        }
     } else {
         sc_curve *out;
         int nout;
         double size = surface_size(s);
-        if (sc_project_loop(s, l3->items, l3->n, PROJECT_TOL * size, PROJECT_OFF_LIMIT * size,
-                            &out, &nout, &dev))
+        int status = sc_project_loop(s, l3->items, l3->n, PROJECT_TOL * size,
+                                     PROJECT_OFF_LIMIT * size, &out, &nout, &dev);
+        if (status == SC_FAIL)
+            return iges_fail_oom(r, r->cur_owner, sc_alloc_failed_bytes(),
+                                 "projecting a trim loop");
+        if (status != SC_OK)
             return LOOP_OFF_SURFACE;
         l.items = out;
         l.n = l.cap = nout;
     }
-    if (iges_charge_curves(r, r->cur_owner, &l, 0)) {
+    if (iges_charge_curves(r, r->cur_owner, &l, 0) || add_loop(r, r->cur_owner, s, is_hole, &l)) {
         iges_list_free(&l);
         return SC_FAIL;
     }
-    add_loop(s, is_hole, &l);
     r->scene->projected_loops++;
     r->scene->projection_dev = fmax(r->scene->projection_dev, dev);
     return SC_OK;
@@ -426,8 +450,11 @@ static int build_trimmed(reader *r, int owner, int base, const int *loops, int n
             report_loop(r, owner, loops[i], is_hole, loop);
         outer_added |= added && !is_hole;
     }
-    if (status == SC_OK && sf.need_bounds && (!any_model || iges_bound_surface(&sf, model,
-                                                                               nloops))) {
+    int bounded = status == SC_OK && sf.need_bounds && any_model
+                      ? iges_bound_surface(&sf, model, nloops) : SC_OK;
+    if (bounded == SC_FAIL) {
+        status = iges_fail_oom(r, base, sc_alloc_failed_bytes(), "the surface");
+    } else if (status == SC_OK && sf.need_bounds && (!any_model || bounded)) {
         /* an unbounded plane, cylinder or cone without usable loops */
         char type[32];
         snprintf(type, sizeof type, "iges-%d", sf.type);
@@ -461,9 +488,12 @@ static int build_trimmed(reader *r, int owner, int base, const int *loops, int n
                                   "surface", r->name, r->ent[base].line, r->err);
     if (status == SC_OK) {
         if (!outer_added && s->nloops > 0)
-            add_domain_loop(s);
-        sc_surface_unwrap_seams(s);
-        status = finish_surface(r, owner, base, s);
+            status = add_domain_loop(r, owner, s);
+        if (status == SC_OK && sc_surface_unwrap_seams(s))
+            status = iges_fail_oom(r, base, sc_alloc_failed_bytes(),
+                                   "the surface extended across its seam");
+        if (status == SC_OK)
+            status = finish_surface(r, owner, base, s);
     }
     if (status)
         sc_surface_free(s);

@@ -143,8 +143,11 @@ int sc_obj_finish_curv2(obj_reader *r)
         }
     }
     sc_curve clamped;
-    sc_curve_clamp(&c, &clamped);
+    int status = sc_curve_clamp(&c, &clamped);
     sc_curve_free(&c);
+    if (status)
+        return sc_fail_oom(r->err, r->name, el->line, 1, sc_alloc_failed_bytes(),
+                           "clamping curv2");
     c = clamped;
     sc_error check;
     if (sc_curve_check(&c, &check)) {
@@ -188,7 +191,11 @@ static int trim_piece(obj_reader *r, const obj_loop_ref *loop, const obj_trim_re
                            loop->is_hole ? "hole" : "trim");
     memcpy(out->knots, c->knots, sizeof(double) * (size_t)(c->ncp + c->degree + 1));
     memcpy(out->cp, c->cp, sizeof(double) * (size_t)c->ncp * (size_t)(c->dim + 1));
-    sc_curve_restrict(out, lo > t0 + tol ? lo : t0, hi < t1 - tol ? hi : t1);
+    if (sc_curve_restrict(out, lo > t0 + tol ? lo : t0, hi < t1 - tol ? hi : t1)) {
+        sc_curve_free(out);
+        return sc_fail_oom(r->err, r->name, loop->line, 1, sc_alloc_failed_bytes(),
+                           loop->is_hole ? "the piece of a hole" : "the piece of a trim");
+    }
     if (ref->t0 > ref->t1)
         sc_curve_reverse(out);
     return SC_OK;

@@ -192,6 +192,10 @@ static int take_doubles(cursor *c, double *out, size_t n)
     return n <= (size_t)(c->end - c->p) / sizeof(double) && take(c, out, n * sizeof(double));
 }
 
+/* What taking a record from the child's reply returns besides 1 (taken)
+ * and 0 (damaged). */
+enum { TAKE_NO_MEMORY = -1 };
+
 static int take_curve(cursor *c, sc_curve *out)
 {
     int dim, degree, ncp;
@@ -199,14 +203,18 @@ static int take_curve(cursor *c, sc_curve *out)
         !take_int(c, &ncp, degree + 1, INT32_MAX / 8) ||
         (size_t)ncp * (size_t)(dim + 2) > (size_t)(c->end - c->p) / sizeof(double))
         return 0;
-    sc_curve_alloc(out, dim, degree, ncp);
+    if (sc_curve_try_alloc(out, dim, degree, ncp))
+        return TAKE_NO_MEMORY;
     return take_doubles(c, out->knots, (size_t)(ncp + degree + 1)) &&
            take_doubles(c, out->cp, (size_t)(dim + 1) * (size_t)ncp);
 }
 
+/* A surface into the scene (freed with it when anything fails). */
 static int take_surface(cursor *rec, sc_scene *scene)
 {
-    sc_surface *s = sc_scene_add_surface(scene);
+    sc_surface *s = sc_scene_try_add_surface(scene);
+    if (!s)
+        return TAKE_NO_MEMORY;
     int du, dv, nu, nv, rational, nloops, pad;
     if (!take(rec, s->name, sizeof s->name) || !take(rec, s->color, sizeof s->color) ||
         !take(rec, s->xform, sizeof s->xform) || !take_int(rec, &du, 1, SC_READ_MAX_DEGREE) ||
@@ -215,14 +223,17 @@ static int take_surface(cursor *rec, sc_scene *scene)
         (size_t)nu * (size_t)nv > (size_t)(rec->end - rec->p) / (4 * sizeof(double)))
         return 0;
     s->name[sizeof s->name - 1] = 0;
-    sc_surface_alloc(s, du, dv, nu, nv);
+    if (sc_surface_try_alloc(s, du, dv, nu, nv))
+        return TAKE_NO_MEMORY;
     s->rational = rational;
     if (!take_doubles(rec, s->knots_u, (size_t)(nu + du + 1)) ||
         !take_doubles(rec, s->knots_v, (size_t)(nv + dv + 1)) ||
         !take_doubles(rec, s->cp, 4 * (size_t)nu * (size_t)nv) ||
         !take_int(rec, &nloops, 0, (int)((rec->end - rec->p) / 8)) || !take_int(rec, &pad, 0, 0))
         return 0;
-    s->loops = nloops ? sc_alloc((size_t)nloops, sizeof *s->loops) : NULL;
+    s->loops = nloops ? sc_try_alloc((size_t)nloops, sizeof *s->loops) : NULL;
+    if (nloops && !s->loops)
+        return TAKE_NO_MEMORY;
     for (int l = 0; l < nloops; l++) {
         sc_loop *loop = &s->loops[l];
         s->nloops = l + 1;
@@ -230,11 +241,13 @@ static int take_surface(cursor *rec, sc_scene *scene)
         if (!take_int(rec, &loop->is_hole, 0, 1) ||
             !take_int(rec, &ncurves, 1, (int)((rec->end - rec->p) / 12)))
             return 0;
-        loop->curves = sc_alloc((size_t)ncurves, sizeof *loop->curves);
+        if (!(loop->curves = sc_try_alloc((size_t)ncurves, sizeof *loop->curves)))
+            return TAKE_NO_MEMORY;
         for (int k = 0; k < ncurves; k++) {
             loop->ncurves = k + 1;
-            if (!take_curve(rec, &loop->curves[k]))
-                return 0;
+            int taken = take_curve(rec, &loop->curves[k]);
+            if (taken != 1)
+                return taken;
         }
     }
     return rec->p == rec->end;
@@ -261,7 +274,10 @@ static int parse_reply(const char *buf, size_t n, const char *name, sc_scene *sc
             k.reason[sizeof k.reason - 1] = 0;
             sc_scene_skip(scene, k.type, k.reason, k.count);
         } else if (kind == 'S') {
-            if (!take_surface(&rec, scene))
+            int taken = take_surface(&rec, scene);
+            if (taken == TAKE_NO_MEMORY)
+                return sc_fail_oom(err, name, 0, sc_alloc_failed_bytes(), 1, "a surface");
+            if (!taken)
                 return sc_fail(err, name, 0, "the STEP reader's child process sent a damaged "
                                "surface");
         } else if (kind == 'E' && len == sizeof(sc_error)) {
@@ -302,15 +318,18 @@ int sc_step_read_isolated(const char *text, size_t size, const char *name,
         return sc_fail(err, name, 0, "cannot start the STEP reader: %s", strerror(errno));
     }
     if (pid == 0) {
+        /* Injected failures (sc_alloc_fail_at) are for the caller's side:
+         * the child's memory has its own limit. */
+        sc_alloc_fail_at(0);
         close(fds[0]);
         run_child(fds[1], text, size, name, scan, max_seconds);
     }
     close(fds[1]);
     size_t cap = 1 << 16, n = 0;
-    char *buf = sc_alloc(cap, 1);
+    char *buf = sc_try_alloc(cap, 1);
     double deadline = now_seconds() + max_seconds + 5;
-    int timed_out = 0, too_much = 0;
-    for (;;) {
+    int timed_out = 0, too_much = 0, no_memory = !buf;
+    while (!no_memory) {
         double left = deadline - now_seconds();
         if (left <= 0) {
             timed_out = 1;
@@ -327,8 +346,13 @@ int sc_step_read_isolated(const char *text, size_t size, const char *name,
                 too_much = 1;
                 break;
             }
+            char *grown = sc_try_realloc(buf, cap * 2, 1);
+            if (!grown) {
+                no_memory = 1;
+                break;
+            }
+            buf = grown;
             cap *= 2;
-            buf = sc_realloc(buf, cap, 1);
         }
         ssize_t k = read(fds[0], buf + n, cap - n);
         if (k < 0 && errno == EINTR)
@@ -338,7 +362,7 @@ int sc_step_read_isolated(const char *text, size_t size, const char *name,
         n += (size_t)k;
     }
     close(fds[0]);
-    if (timed_out || too_much)
+    if (timed_out || too_much || no_memory)
         kill(pid, SIGKILL);
     int wstatus = 0;
     while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR)
@@ -350,6 +374,8 @@ int sc_step_read_isolated(const char *text, size_t size, const char *name,
     else if (too_much)
         status = sc_fail(err, name, 0, "the file expands to more than %zu MiB of geometry",
                          SC_GEOMETRY_BUDGET >> 20);
+    else if (no_memory)
+        status = sc_fail_oom(err, name, 0, buf ? cap * 2 : cap, 1, "the STEP reader's reply");
     else
         status = parse_reply(buf, n, name, scene, err, &done);
     free(buf);

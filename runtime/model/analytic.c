@@ -48,9 +48,10 @@ static void arc_knots(int pieces, double *k)
         k[2 * i + 1] = k[2 * i + 2] = i;
 }
 
-void sc_line3(const double p0[3], const double p1[3], sc_curve *out)
+int sc_line3(const double p0[3], const double p1[3], sc_curve *out)
 {
-    sc_curve_alloc(out, 3, 1, 2);
+    if (sc_curve_try_alloc(out, 3, 1, 2))
+        return SC_FAIL;
     out->knots[0] = out->knots[1] = 0;
     out->knots[2] = out->knots[3] = 1;
     for (int d = 0; d < 3; d++) {
@@ -58,14 +59,16 @@ void sc_line3(const double p0[3], const double p1[3], sc_curve *out)
         out->cp[4 + d] = p1[d];
     }
     out->cp[3] = out->cp[7] = 1;
+    return SC_OK;
 }
 
-void sc_ellipse_arc(int dim, const double c[3], const double x[3], const double y[3], double rx,
-                    double ry, double a0, double a1, sc_curve *out)
+int sc_ellipse_arc(int dim, const double c[3], const double x[3], const double y[3], double rx,
+                   double ry, double a0, double a1, sc_curve *out)
 {
     unit_arc a;
     unit_arc_make(a0, a1, &a);
-    sc_curve_alloc(out, dim, 2, a.n);
+    if (sc_curve_try_alloc(out, dim, 2, a.n))
+        return SC_FAIL;
     arc_knots(a.pieces, out->knots);
     for (int i = 0; i < a.n; i++) {
         double *q = out->cp + (size_t)(dim + 1) * i, w = a.w[i];
@@ -73,13 +76,15 @@ void sc_ellipse_arc(int dim, const double c[3], const double x[3], const double 
             q[d] = (c[d] + rx * a.xy[i][0] * x[d] + ry * a.xy[i][1] * y[d]) * w;
         q[dim] = w;
     }
+    return SC_OK;
 }
 
-void sc_plane_patch(const double o[3], const double x[3], const double y[3], double u0,
-                    double u1, double v0, double v1, sc_surface *out)
+int sc_plane_patch(const double o[3], const double x[3], const double y[3], double u0,
+                   double u1, double v0, double v1, sc_surface *out)
 {
     memset(out, 0, sizeof *out);
-    sc_surface_alloc(out, 1, 1, 2, 2);
+    if (sc_surface_try_alloc(out, 1, 1, 2, 2))
+        return SC_FAIL;
     out->knots_u[0] = out->knots_u[1] = u0;
     out->knots_u[2] = out->knots_u[3] = u1;
     out->knots_v[0] = out->knots_v[1] = v0;
@@ -92,6 +97,7 @@ void sc_plane_patch(const double o[3], const double x[3], const double y[3], dou
             q[3] = 1;
         }
     sc_surface_update_rational(out);
+    return SC_OK;
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -99,13 +105,14 @@ static double dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-void sc_revolve(const sc_curve *gen, const double o[3], const double axis[3], double a0,
-                double a1, sc_surface *out)
+int sc_revolve(const sc_curve *gen, const double o[3], const double axis[3], double a0,
+               double a1, sc_surface *out)
 {
     unit_arc a;
     unit_arc_make(a0, a1, &a);
     memset(out, 0, sizeof *out);
-    sc_surface_alloc(out, gen->degree, 2, gen->ncp, a.n);
+    if (sc_surface_try_alloc(out, gen->degree, 2, gen->ncp, a.n))
+        return SC_FAIL;
     memcpy(out->knots_u, gen->knots, sizeof(double) * (size_t)(gen->ncp + gen->degree + 1));
     arc_knots(a.pieces, out->knots_v);
     for (int i = 0; i < gen->ncp; i++) {
@@ -135,12 +142,14 @@ void sc_revolve(const sc_curve *gen, const double o[3], const double axis[3], do
         }
     }
     sc_surface_update_rational(out);
+    return SC_OK;
 }
 
-void sc_extrude(const sc_curve *c, const double dvec[3], sc_surface *out)
+int sc_extrude(const sc_curve *c, const double dvec[3], sc_surface *out)
 {
     memset(out, 0, sizeof *out);
-    sc_surface_alloc(out, c->degree, 1, c->ncp, 2);
+    if (sc_surface_try_alloc(out, c->degree, 1, c->ncp, 2))
+        return SC_FAIL;
     memcpy(out->knots_u, c->knots, sizeof(double) * (size_t)(c->ncp + c->degree + 1));
     out->knots_v[0] = out->knots_v[1] = 0;
     out->knots_v[2] = out->knots_v[3] = 1;
@@ -153,6 +162,7 @@ void sc_extrude(const sc_curve *c, const double dvec[3], sc_surface *out)
             q[3] = g[3];
         }
     sc_surface_update_rational(out);
+    return SC_OK;
 }
 
 void sc_curve_reparam(sc_curve *c, double t0, double t1)
@@ -168,30 +178,35 @@ int sc_curve_join(const sc_curve *curves, int n, sc_curve *out)
     int p = 0, dim = curves[0].dim, st = dim + 1, total = 1;
     for (int k = 0; k < n; k++)
         p = curves[k].degree > p ? curves[k].degree : p;
-    sc_curve *c = sc_alloc((size_t)n, sizeof(sc_curve));
+    memset(out, 0, sizeof *out);
+    sc_curve *c = sc_try_alloc((size_t)n, sizeof(sc_curve));
+    if (!c)
+        return SC_FAIL;
     double size = 0;
-    for (int k = 0; k < n; k++) {
-        if (curves[k].degree < p)
-            sc_curve_elevate(&curves[k], p - curves[k].degree, &c[k]);
-        else
-            sc_curve_copy(&c[k], &curves[k]);
+    int status = SC_OK, made = 0;
+    for (; made < n && status == SC_OK; made++) {
+        int k = made;
+        status = curves[k].degree < p ? sc_curve_elevate(&curves[k], p - curves[k].degree, &c[k])
+                                      : sc_curve_try_copy(&c[k], &curves[k]);
+        if (status)
+            break;
         sc_curve_reparam(&c[k], k, k + 1);
         total += c[k].ncp - 1;
         for (int i = 0; i < c[k].ncp * st; i++)
             size = fmax(size, fabs(c[k].cp[i] / c[k].cp[(i / st) * st + dim]));
     }
-    int status = 0;
-    for (int k = 1; k < n && status == 0; k++) {
+    for (int k = 1; k < n && status == SC_OK; k++) {
         const double *e = c[k - 1].cp + (size_t)st * (c[k - 1].ncp - 1);
         double *s = c[k].cp, scale = e[dim] / s[dim];
         for (int i = 0; i < c[k].ncp * st; i++)
             c[k].cp[i] *= scale;
         for (int d = 0; d < dim; d++)
             if (fabs(e[d] / e[dim] - s[d] / s[dim]) > 1e-6 * (size + 1e-300))
-                status = -1;
+                status = SC_JOIN_APART;
     }
-    if (status == 0) {
-        sc_curve_alloc(out, dim, p, total);
+    if (status == SC_OK)
+        status = sc_curve_try_alloc(out, dim, p, total);
+    if (status == SC_OK) {
         int at = 0, kn = 0;
         for (int k = 0; k < n; k++) {
             int first = k ? 1 : 0;
@@ -203,7 +218,7 @@ int sc_curve_join(const sc_curve *curves, int n, sc_curve *out)
                 out->knots[kn++] = c[k].knots[i];
         }
     }
-    for (int k = 0; k < n; k++)
+    for (int k = 0; k < made; k++)
         sc_curve_free(&c[k]);
     free(c);
     return status;
@@ -228,39 +243,49 @@ static int missing_knots(const sc_curve *to, const sc_curve *from, double *x)
     return n;
 }
 
-void sc_ruled(const sc_curve *a, const sc_curve *b, sc_surface *out)
+int sc_ruled(const sc_curve *a, const sc_curve *b, sc_surface *out)
 {
-    sc_curve c[2], tmp;
+    sc_curve c[2] = {{0}}, tmp;
     const sc_curve *in[2] = {a, b};
-    int p = a->degree > b->degree ? a->degree : b->degree;
-    for (int k = 0; k < 2; k++) {
-        if (in[k]->degree < p)
-            sc_curve_elevate(in[k], p - in[k]->degree, &c[k]);
-        else
-            sc_curve_copy(&c[k], in[k]);
-        sc_curve_reparam(&c[k], 0, 1);
+    int p = a->degree > b->degree ? a->degree : b->degree, status = SC_OK;
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < 2 && status == SC_OK; k++) {
+        status = in[k]->degree < p ? sc_curve_elevate(in[k], p - in[k]->degree, &c[k])
+                                   : sc_curve_try_copy(&c[k], in[k]);
+        if (status == SC_OK)
+            sc_curve_reparam(&c[k], 0, 1);
     }
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 2 && status == SC_OK; k++) {
         int nk = c[!k].ncp + c[!k].degree + 1;
-        double *x = malloc(sizeof(double) * (size_t)nk);
+        double *x = sc_try_alloc((size_t)nk, sizeof(double));
+        if (!x) {
+            status = SC_FAIL;
+            break;
+        }
         int nx = missing_knots(&c[k], &c[!k], x);
         if (nx) {
-            sc_curve_refine(&c[k], x, nx, &tmp);
-            sc_curve_free(&c[k]);
-            c[k] = tmp;
+            status = sc_curve_refine(&c[k], x, nx, &tmp);
+            if (status == SC_OK) {
+                sc_curve_free(&c[k]);
+                c[k] = tmp;
+            }
         }
         free(x);
     }
-    memset(out, 0, sizeof *out);
-    sc_surface_alloc(out, p, 1, c[0].ncp, 2);
-    memcpy(out->knots_u, c[0].knots, sizeof(double) * (size_t)(c[0].ncp + p + 1));
-    out->knots_v[0] = out->knots_v[1] = 0;
-    out->knots_v[2] = out->knots_v[3] = 1;
-    for (int j = 0; j < 2; j++)
-        memcpy(out->cp + 4 * (size_t)j * c[0].ncp, c[j].cp, sizeof(double) * 4 * (size_t)c[0].ncp);
+    if (status == SC_OK)
+        status = sc_surface_try_alloc(out, p, 1, c[0].ncp, 2);
+    if (status == SC_OK) {
+        memcpy(out->knots_u, c[0].knots, sizeof(double) * (size_t)(c[0].ncp + p + 1));
+        out->knots_v[0] = out->knots_v[1] = 0;
+        out->knots_v[2] = out->knots_v[3] = 1;
+        for (int j = 0; j < 2; j++)
+            memcpy(out->cp + 4 * (size_t)j * c[0].ncp, c[j].cp,
+                   sizeof(double) * 4 * (size_t)c[0].ncp);
+        sc_surface_update_rational(out);
+    }
     sc_curve_free(&c[0]);
     sc_curve_free(&c[1]);
-    sc_surface_update_rational(out);
+    return status;
 }
 
 
@@ -306,7 +331,7 @@ int sc_surface_closed(const sc_surface *s, int dir)
 /* Joins a copy of the (clamped, closed) surface shifted by one period
  * before (left) or after it along dir: the seam becomes an interior knot of
  * multiplicity degree, the shape is unchanged. */
-static void join_period(sc_surface *s, int dir, int left)
+static int join_period(sc_surface *s, int dir, int left)
 {
     int p = dir ? s->deg_v : s->deg_u, n = dir ? s->nv : s->nu, nk = n + p + 1;
     const double *k = dir ? s->knots_v : s->knots_u;
@@ -314,7 +339,9 @@ static void join_period(sc_surface *s, int dir, int left)
     sc_surface out = *s;
     out.loops = NULL;
     out.nloops = 0;
-    sc_surface_alloc(&out, s->deg_u, s->deg_v, dir ? s->nu : 2 * n - 1, dir ? 2 * n - 1 : s->nv);
+    if (sc_surface_try_alloc(&out, s->deg_u, s->deg_v, dir ? s->nu : 2 * n - 1,
+                             dir ? 2 * n - 1 : s->nv))
+        return SC_FAIL;
     memcpy(dir ? out.knots_u : out.knots_v, dir ? s->knots_u : s->knots_v,
            sizeof(double) * (size_t)(dir ? s->nu + s->deg_u + 1 : s->nv + s->deg_v + 1));
     double *ko = dir ? out.knots_v : out.knots_u;
@@ -333,20 +360,21 @@ static void join_period(sc_surface *s, int dir, int left)
         }
     sc_surface_free(s);
     *s = out;
+    return SC_OK;
 }
 
 /* Trims of a closed surface may run across its seam (a torus trimmed at
  * u in [-pi/2, pi/2] on a [0, 2pi] domain). The surface is then extended by
  * whole periods and restricted to the trims' range, so that every trimmed
  * point has its own parameters. */
-void sc_surface_unwrap_seams(sc_surface *s)
+int sc_surface_unwrap_seams(sc_surface *s)
 {
     if (s->nloops == 0)
-        return;
+        return SC_OK;
     /* Restriction and joining rebuild the surface without its loops. */
     sc_loop *loops = s->loops;
-    int nloops = s->nloops;
-    for (int dir = 0; dir < 2; dir++) {
+    int nloops = s->nloops, status = SC_OK;
+    for (int dir = 0; dir < 2 && status == SC_OK; dir++) {
         double lo, hi, a, b, c, d;
         sc_surface_domain(s, &a, &b, &c, &d);
         if (dir) {
@@ -361,11 +389,13 @@ void sc_surface_unwrap_seams(sc_surface *s)
         s->loops = NULL;
         s->nloops = 0;
         if (lo < a - slack)
-            join_period(s, dir, 1);
-        if (hi > b + slack)
-            join_period(s, dir, 0);
-        sc_surface_restrict(s, dir, lo, hi);
+            status = join_period(s, dir, 1);
+        if (status == SC_OK && hi > b + slack)
+            status = join_period(s, dir, 0);
+        if (status == SC_OK)
+            status = sc_surface_try_restrict(s, dir, lo, hi);
         s->loops = loops;
         s->nloops = nloops;
     }
+    return status;
 }

@@ -142,34 +142,37 @@ static double bezier_flatness(const double *B, int degree)
 static void flatten_bezier(const double *B, int degree, double tol, int depth, int curve,
                            polyline *pl)
 {
+    if (pl->failed)
+        return;
     if (depth >= FLAT_MAX_DEPTH || pl->n >= FLAT_MAX_POINTS ||
         bezier_flatness(B, degree) <= tol) {
         const double *E = B + 3 * degree;
         poly_push(pl, E[0] / E[2], E[1] / E[2], curve);
         return;
     }
-    size_t npts = (size_t)degree + 1;
-    double *left = sc_alloc(npts * 3, sizeof(double));
-    double *right = sc_alloc(npts * 3, sizeof(double));
+    /* check_curves has refused degrees above SC_TRIM_MAX_DEGREE. */
+    assert(degree <= SC_TRIM_MAX_DEGREE);
+    double left[3 * (SC_TRIM_MAX_DEGREE + 1)], right[3 * (SC_TRIM_MAX_DEGREE + 1)];
     sc_bezier_split(B, degree, 3, 3, 0.5, left, right);
     flatten_bezier(left, degree, tol, depth + 1, curve, pl);
     flatten_bezier(right, degree, tol, depth + 1, curve, pl);
-    free(left);
-    free(right);
 }
 
 /* The loop as one closed polyline: each curve contributes its vertices
  * but its last, which is the next curve's first. */
 static void flatten_loop(const sc_loop *loop, double tol, polyline *pl)
 {
-    for (int c = 0; c < loop->ncurves; c++) {
+    for (int c = 0; c < loop->ncurves && !pl->failed; c++) {
         const sc_curve *cv = &loop->curves[c];
         double start[2];
         end_point(cv, 0, start);
         poly_push(pl, start[0], start[1], c);
         sc_curve *segs;
         int nseg;
-        sc_curve_to_bezier(cv, &segs, &nseg);
+        if (sc_curve_to_bezier(cv, &segs, &nseg)) {
+            pl->failed = sc_alloc_failed_bytes();
+            break;
+        }
         for (int s = 0; s < nseg; s++) {
             flatten_bezier(segs[s].cp, cv->degree, tol, 0, c, pl);
             sc_curve_free(&segs[s]);

@@ -47,45 +47,47 @@ void sc_surface_domain(const sc_surface *s, double *u0, double *u1, double *v0,
                        double *v1);
 
 /* ---- curves: new curves written to *out (allocated; free with
- * sc_curve_free). `out` must not alias the input. ---- */
+ * sc_curve_free). `out` must not alias the input. Each returns SC_OK, or
+ * SC_FAIL when memory runs out (a curve of a file can be as large as the
+ * envelope allows): the outputs are then zeroed and nothing is left
+ * allocated (sc_alloc_failed_bytes says how much was asked for). ---- */
 /* Inserts u (in the closed domain, ends included) up to multiplicity
  * degree; more, or u outside the domain, leaves the curve as it is. */
-void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out);
-void sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out);
+int sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out);
+int sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out);
 /* Splits at t strictly inside the domain into [t0, t] and [t, t1]. */
-void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right);
-void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out);
+int sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right);
+int sc_curve_elevate(const sc_curve *c, int times, sc_curve *out);
 /* The same curve on its domain [knots[degree], knots[ncp]] with clamped
  * knots: for an unclamped (uniform, periodic, ...) vector, both domain ends
  * inserted to multiplicity degree and the control points outside dropped;
  * a clamped curve (or one with an empty domain) is copied as it is. */
-void sc_curve_clamp(const sc_curve *c, sc_curve *out);
+int sc_curve_clamp(const sc_curve *c, sc_curve *out);
 /* ---- in place: these replace their argument (readers apply them to what
- * they have just built). ---- */
+ * they have just built); on SC_FAIL the argument is as it was. ---- */
 /* The clamped piece of the curve over [a, b]: an end outside the domain is
  * moved onto it, an end within 1e-10 of the domain's size of a knot is
  * that knot (no sliver spans), and an empty range keeps the whole domain
  * (the curve is then only clamped). */
-void sc_curve_restrict(sc_curve *c, double a, double b);
+int sc_curve_restrict(sc_curve *c, double a, double b);
 /* The same curve run backwards on the same domain [a, b]: knots reflected
  * within it (k -> a + b - k, the ends exchanged exactly), control points in
- * reverse order. */
+ * reverse order. Allocates nothing. */
 void sc_curve_reverse(sc_curve *c);
 /* sc_curve_restrict along dir for every row (dir 0) or column (dir 1); the
  * result is clamped in both directions and keeps the trim loops, which
- * restriction does not move. */
-void sc_surface_restrict(sc_surface *s, int dir, double a, double b);
-/* The same, failing (s unchanged) when the surface-sized arrays cannot be
- * allocated, for surfaces read from a file. */
+ * restriction does not move. SC_FAIL (s unchanged) when memory runs out. */
 int sc_surface_try_restrict(sc_surface *s, int dir, double a, double b);
 
 /* Bézier segments: *count segments written to a new array of curves, each
  * with degree+1 control points and knots [a..a b..b] keeping its original
  * parameter interval. */
-void sc_curve_to_bezier(const sc_curve *c, sc_curve **segments, int *count);
+int sc_curve_to_bezier(const sc_curve *c, sc_curve **segments, int *count);
 
 /* ---- surfaces: dir 0 = u, 1 = v. New surfaces keep name, colour,
- * transform and rational flag; trim loops are not copied. ---- */
+ * transform and rational flag; trim loops are not copied. These abort when
+ * memory runs out (the stages after reading use them, on surfaces the
+ * envelope has bounded), except the _try_ forms. ---- */
 void sc_surface_insert_knot(const sc_surface *s, int dir, double t, int times,
                             sc_surface *out);
 void sc_surface_refine(const sc_surface *s, int dir, const double *x, int nx,
@@ -95,8 +97,7 @@ void sc_surface_split(const sc_surface *s, int dir, double t, sc_surface *lo,
 void sc_surface_elevate(const sc_surface *s, int dir, int times, sc_surface *out);
 /* sc_curve_clamp in both directions. */
 void sc_surface_clamp(const sc_surface *s, sc_surface *out);
-/* The same, failing (out zeroed) when the surface-sized arrays cannot be
- * allocated. */
+/* The same, failing (out zeroed) when memory runs out. */
 int sc_surface_try_clamp(const sc_surface *s, sc_surface *out);
 
 /* One Bézier patch of a surface, with its parameter rectangle in the

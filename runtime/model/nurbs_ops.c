@@ -58,26 +58,49 @@ static int insertion_span(const double *knots, int nknots, double u)
     return low - 1;
 }
 
+/* Every operation runs in one of two modes: checked, where an allocation
+ * that fails makes it return SC_FAIL with its outputs zeroed and nothing
+ * left allocated (the public curve operations, which readers apply to what
+ * a file gives), or aborting as sc_alloc does (the surface operations of
+ * the stages after reading, whose sizes the envelope has bounded). */
+static void *op_alloc(int checked, size_t count, size_t size)
+{
+    return checked ? sc_try_alloc(count, size) : sc_alloc(count, size);
+}
+
+static int op_curve_alloc(int checked, sc_curve *c, int dim, int degree, int ncp)
+{
+    if (checked)
+        return sc_curve_try_alloc(c, dim, degree, ncp);
+    sc_curve_alloc(c, dim, degree, ncp);
+    return SC_OK;
+}
+
+static int op_curve_copy(int checked, sc_curve *dst, const sc_curve *src)
+{
+    if (checked)
+        return sc_curve_try_copy(dst, src);
+    sc_curve_copy(dst, src);
+    return SC_OK;
+}
+
 /* A5.1: inserts u `times` times (limited so that the multiplicity does not
  * exceed the degree). u may be a domain end: inserting the ends of an
  * unclamped vector up to the degree is how it is clamped (sc_curve_clamp). */
-void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out)
+static int insert_knot(int checked, const sc_curve *c, double u, int times, sc_curve *out)
 {
     int p = c->degree, n = c->ncp - 1, stride = c->dim + 1;
     double t0, t1;
     sc_curve_domain(c, &t0, &t1);
-    if (!(u >= t0 && u <= t1 && t0 < t1)) {
-        sc_curve_copy(out, c);
-        return;
-    }
+    if (!(u >= t0 && u <= t1 && t0 < t1))
+        return op_curve_copy(checked, out, c);
     int k = insertion_span(c->knots, (int)knot_count(c), u);
     int s = multiplicity(c->knots, (int)knot_count(c), u);
     int r = times < p - s ? times : p - s;
-    if (r <= 0) {
-        sc_curve_copy(out, c);
-        return;
-    }
-    sc_curve_alloc(out, c->dim, p, c->ncp + r);
+    if (r <= 0)
+        return op_curve_copy(checked, out, c);
+    if (op_curve_alloc(checked, out, c->dim, p, c->ncp + r))
+        return SC_FAIL;
     const double *U = c->knots;
     double *UQ = out->knots;
     int m = n + p + 1;
@@ -93,6 +116,8 @@ void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out)
         copy_point(QW(i), PW(i), stride);
     for (int i = k - s; i <= n; i++)
         copy_point(QW(i + r), PW(i), stride);
+    /* Degrees up to SC_READ_MAX_DEGREE: at most a few kilobytes, the
+     * documented abort of small allocations. */
     double stack[STACK_ORDER * 4];
     double *R = scratch(stack, STACK_ORDER * 4, (size_t)(p + 1) * (size_t)stride);
     for (int i = 0; i <= p - s; i++)
@@ -112,6 +137,12 @@ void sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out)
 #undef PW
 #undef QW
     scratch_release(R, stack);
+    return SC_OK;
+}
+
+int sc_curve_insert_knot(const sc_curve *c, double u, int times, sc_curve *out)
+{
+    return insert_knot(1, c, u, times, out);
 }
 
 static int compare_double(const void *a, const void *b)
@@ -123,24 +154,29 @@ static int compare_double(const void *a, const void *b)
 /* A5.4: inserts all of x at once. Values at or outside the domain's ends
  * are ignored (the clamped ends already have full multiplicity), the rest
  * sorted; x need not be ordered. */
-void sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out)
+static int refine(int checked, const sc_curve *c, const double *x, int nx, sc_curve *out)
 {
     double t0, t1;
     sc_curve_domain(c, &t0, &t1);
-    double *X = sc_alloc((size_t)(nx > 0 ? nx : 1), sizeof(double));
+    memset(out, 0, sizeof *out);
+    double *X = op_alloc(checked, (size_t)(nx > 0 ? nx : 1), sizeof(double));
+    if (!X)
+        return SC_FAIL;
     int r = 0;
     for (int i = 0; i < nx; i++)
         if (x[i] > t0 && x[i] < t1)
             X[r++] = x[i];
     if (r == 0) {
         free(X);
-        sc_curve_copy(out, c);
-        return;
+        return op_curve_copy(checked, out, c);
     }
     qsort(X, (size_t)r, sizeof(double), compare_double);
     int p = c->degree, n = c->ncp - 1, m = n + p + 1, stride = c->dim + 1;
     const double *U = c->knots;
-    sc_curve_alloc(out, c->dim, p, c->ncp + r);
+    if (op_curve_alloc(checked, out, c->dim, p, c->ncp + r)) {
+        free(X);
+        return SC_FAIL;
+    }
     double *Ubar = out->knots;
 #define PW(i) (c->cp + (size_t)(i) * (size_t)stride)
 #define QW(i) (out->cp + (size_t)(i) * (size_t)stride)
@@ -182,6 +218,12 @@ void sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out)
 #undef PW
 #undef QW
     free(X);
+    return SC_OK;
+}
+
+int sc_curve_refine(const sc_curve *c, const double *x, int nx, sc_curve *out)
+{
+    return refine(1, c, x, nx, out);
 }
 
 /* The knots to insert so that every interior knot has multiplicity at
@@ -202,12 +244,16 @@ static int bezier_refinement(int degree, const double *knots, int ncp, double *x
     return count;
 }
 
-static void refine_to_bezier(const sc_curve *c, sc_curve *out)
+static int refine_to_bezier(int checked, const sc_curve *c, sc_curve *out)
 {
-    double *x = sc_alloc((size_t)(c->ncp) * (size_t)c->degree + 1, sizeof(double));
+    memset(out, 0, sizeof *out);
+    double *x = op_alloc(checked, (size_t)(c->ncp) * (size_t)c->degree + 1, sizeof(double));
+    if (!x)
+        return SC_FAIL;
     int nx = bezier_refinement(c->degree, c->knots, c->ncp, x);
-    sc_curve_refine(c, x, nx, out);
+    int status = refine(checked, c, x, nx, out);
     free(x);
+    return status;
 }
 
 /* Spans that are not empty: with every interior multiplicity >= degree,
@@ -221,38 +267,55 @@ static int nonempty_spans(int degree, const double *knots, int ncp, int *spans)
     return count;
 }
 
-void sc_curve_to_bezier(const sc_curve *c, sc_curve **segments, int *count)
+int sc_curve_to_bezier(const sc_curve *c, sc_curve **segments, int *count)
 {
     sc_curve refined;
-    refine_to_bezier(c, &refined);
+    *segments = NULL;
+    *count = 0;
+    if (refine_to_bezier(1, c, &refined))
+        return SC_FAIL;
     int p = c->degree, stride = c->dim + 1;
-    int *spans = sc_alloc((size_t)refined.ncp, sizeof(int));
-    int nseg = nonempty_spans(p, refined.knots, refined.ncp, spans);
-    sc_curve *segs = sc_alloc((size_t)nseg, sizeof(sc_curve));
-    for (int s = 0; s < nseg; s++) {
-        int k = spans[s];
-        sc_curve_alloc(&segs[s], c->dim, p, p + 1);
+    int *spans = sc_try_alloc((size_t)refined.ncp, sizeof(int));
+    int nseg = spans ? nonempty_spans(p, refined.knots, refined.ncp, spans) : 0;
+    sc_curve *segs = spans ? sc_try_alloc((size_t)nseg, sizeof(sc_curve)) : NULL;
+    int made = 0;
+    while (segs && made < nseg) {
+        int k = spans[made];
+        sc_curve *sg = &segs[made];
+        if (sc_curve_try_alloc(sg, c->dim, p, p + 1))
+            break;
         for (int i = 0; i <= p; i++) {
-            segs[s].knots[i] = refined.knots[k];
-            segs[s].knots[p + 1 + i] = refined.knots[k + 1];
+            sg->knots[i] = refined.knots[k];
+            sg->knots[p + 1 + i] = refined.knots[k + 1];
         }
-        memcpy(segs[s].cp, refined.cp + (size_t)(k - p) * (size_t)stride,
+        memcpy(sg->cp, refined.cp + (size_t)(k - p) * (size_t)stride,
                sizeof(double) * (size_t)(p + 1) * (size_t)stride);
+        made++;
     }
     free(spans);
     sc_curve_free(&refined);
+    if (!segs || made < nseg) {
+        for (int s = 0; s < made; s++)
+            sc_curve_free(&segs[s]);
+        free(segs);
+        return SC_FAIL;
+    }
     *segments = segs;
     *count = nseg;
+    return SC_OK;
 }
 
-void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right)
+static int split(int checked, const sc_curve *c, double t, sc_curve *left, sc_curve *right)
 {
     double t0, t1;
     sc_curve_domain(c, &t0, &t1);
     assert(t > t0 && t < t1);
     int p = c->degree, stride = c->dim + 1;
     sc_curve full;
-    sc_curve_insert_knot(c, t, p, &full);
+    memset(left, 0, sizeof *left);
+    memset(right, 0, sizeof *right);
+    if (insert_knot(checked, c, t, p, &full))
+        return SC_FAIL;
     /* With t of multiplicity p (at least), the curve passes through the
      * control point just before t's first knot: both halves share it. */
     int nk = full.ncp + p + 1, first = 0;
@@ -267,8 +330,12 @@ void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right
      * without a shared point. */
     int right_start = mult > p ? first : first - 1;
     int right_ncp = full.ncp - right_start;
-    sc_curve_alloc(left, c->dim, p, left_ncp);
-    sc_curve_alloc(right, c->dim, p, right_ncp);
+    if (op_curve_alloc(checked, left, c->dim, p, left_ncp) ||
+        op_curve_alloc(checked, right, c->dim, p, right_ncp)) {
+        sc_curve_free(left);
+        sc_curve_free(&full);
+        return SC_FAIL;
+    }
     memcpy(left->knots, full.knots, sizeof(double) * (size_t)first);
     for (int i = 0; i <= p; i++)
         left->knots[first + i] = t;
@@ -280,21 +347,29 @@ void sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right
     memcpy(right->cp, full.cp + (size_t)right_start * (size_t)stride,
            sizeof(double) * (size_t)right_ncp * (size_t)stride);
     sc_curve_free(&full);
+    return SC_OK;
 }
 
-void sc_curve_clamp(const sc_curve *c, sc_curve *out)
+int sc_curve_split(const sc_curve *c, double t, sc_curve *left, sc_curve *right)
+{
+    return split(1, c, t, left, right);
+}
+
+static int clamp(int checked, const sc_curve *c, sc_curve *out)
 {
     int p = c->degree, stride = c->dim + 1;
     double t0, t1;
     sc_curve_domain(c, &t0, &t1);
-    if (!(t0 < t1)) {
-        sc_curve_copy(out, c);
-        return;
-    }
+    if (!(t0 < t1))
+        return op_curve_copy(checked, out, c);
     sc_curve front, both;
-    sc_curve_insert_knot(c, t0, p, &front);
-    sc_curve_insert_knot(&front, t1, p, &both);
+    memset(out, 0, sizeof *out);
+    if (insert_knot(checked, c, t0, p, &front))
+        return SC_FAIL;
+    int status = insert_knot(checked, &front, t1, p, &both);
     sc_curve_free(&front);
+    if (status)
+        return SC_FAIL;
     /* Each end now has multiplicity >= p. N_i with i < last_t0 - p ends at
      * or before t0, N_i with i >= first_t1 starts at or after t1: neither
      * reaches into the domain, so their points go. The outermost knots
@@ -306,14 +381,20 @@ void sc_curve_clamp(const sc_curve *c, sc_curve *out)
     while (both.knots[first_t1 - 1] == t1)
         first_t1--;
     int first = last_t0 - p, count = first_t1 - first;
-    sc_curve_alloc(out, c->dim, p, count);
+    if (op_curve_alloc(checked, out, c->dim, p, count)) {
+        sc_curve_free(&both);
+        return SC_FAIL;
+    }
     memcpy(out->knots, both.knots + first, sizeof(double) * (size_t)(count + p + 1));
     out->knots[0] = t0;
     out->knots[count + p] = t1;
     memcpy(out->cp, both.cp + (size_t)first * (size_t)stride,
            sizeof(double) * (size_t)count * (size_t)stride);
     sc_curve_free(&both);
+    return SC_OK;
 }
+
+int sc_curve_clamp(const sc_curve *c, sc_curve *out) { return clamp(1, c, out); }
 
 /* A requested domain end within rounding of a knot is that knot, so that
  * no sliver span is created. */
@@ -328,10 +409,12 @@ static double snap_to_knot(double t, const double *knots, int nk, double scale)
 /* The clamped piece of c over [a, b]: ends outside the domain are moved to
  * it, ends within 1e-10 of the domain of a knot snap to it, and an empty
  * range means the whole domain. */
-static void curve_restricted(const sc_curve *c, double a, double b, sc_curve *out)
+static int curve_restricted(int checked, const sc_curve *c, double a, double b, sc_curve *out)
 {
     sc_curve work, lo, hi;
-    sc_curve_clamp(c, &work);
+    memset(out, 0, sizeof *out);
+    if (clamp(checked, c, &work))
+        return SC_FAIL;
     double t0, t1;
     sc_curve_domain(&work, &t0, &t1);
     int nk = (int)knot_count(&work);
@@ -342,26 +425,33 @@ static void curve_restricted(const sc_curve *c, double a, double b, sc_curve *ou
         b = t1;
     }
     if (a > t0) {
-        sc_curve_split(&work, a, &lo, &hi);
+        int status = split(checked, &work, a, &lo, &hi);
         sc_curve_free(&lo);
         sc_curve_free(&work);
+        if (status)
+            return SC_FAIL;
         work = hi;
     }
     if (b < t1) {
-        sc_curve_split(&work, b, &lo, &hi);
+        int status = split(checked, &work, b, &lo, &hi);
         sc_curve_free(&hi);
         sc_curve_free(&work);
+        if (status)
+            return SC_FAIL;
         work = lo;
     }
     *out = work;
+    return SC_OK;
 }
 
-void sc_curve_restrict(sc_curve *c, double a, double b)
+int sc_curve_restrict(sc_curve *c, double a, double b)
 {
     sc_curve out;
-    curve_restricted(c, a, b, &out);
+    if (curve_restricted(1, c, a, b, &out))
+        return SC_FAIL;
     sc_curve_free(c);
     *c = out;
+    return SC_OK;
 }
 
 /* Knots reflected within the domain [a, b]: k -> a + b - k, with the ends
@@ -443,32 +533,34 @@ static void remove_knot_once(double *U, double *P, int *ncp, int stride, int p, 
  * Q_i = Σ_j C(p,j) C(t,i−j) / C(p+t,i) P_j, chain them with every interior
  * knot at multiplicity p+t, then remove each knot down to its original
  * multiplicity + t (the continuity the original curve had). */
-void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out)
+static int elevate(int checked, const sc_curve *c, int times, sc_curve *out)
 {
-    if (times <= 0) {
-        sc_curve_copy(out, c);
-        return;
-    }
+    memset(out, 0, sizeof *out);
+    if (times <= 0)
+        return op_curve_copy(checked, out, c);
     int p = c->degree, ph = p + times, stride = c->dim + 1;
     sc_curve refined;
-    refine_to_bezier(c, &refined);
-    int *spans = sc_alloc((size_t)refined.ncp, sizeof(int));
-    int nseg = nonempty_spans(p, refined.knots, refined.ncp, spans);
+    if (refine_to_bezier(checked, c, &refined))
+        return SC_FAIL;
+    int *spans = op_alloc(checked, (size_t)refined.ncp, sizeof(int));
+    int nseg = spans ? nonempty_spans(p, refined.knots, refined.ncp, spans) : 0;
 
     /* Upper bound: every segment with its own ph+1 points. */
     size_t cap = (size_t)nseg * (size_t)(ph + 1);
-    double *P = sc_alloc(cap * (size_t)stride, sizeof(double));
-    double *U = sc_alloc(cap + (size_t)ph + 1, sizeof(double));
-    double *coef = sc_alloc((size_t)(ph + 1) * (size_t)(p + 1), sizeof(double));
-    for (int i = 0; i <= ph; i++)
+    double *P = spans ? op_alloc(checked, cap * (size_t)stride, sizeof(double)) : NULL;
+    double *U = P ? op_alloc(checked, cap + (size_t)ph + 1, sizeof(double)) : NULL;
+    double *coef = U ? op_alloc(checked, (size_t)(ph + 1) * (size_t)(p + 1), sizeof(double))
+                     : NULL;
+    int status = coef ? SC_OK : SC_FAIL;
+    for (int i = 0; i <= ph && coef; i++)
         for (int j = 0; j <= p; j++)
             if (j <= i && i - j <= times)
                 coef[i * (p + 1) + j] = binomial(p, j) * binomial(times, i - j) / binomial(ph, i);
 
     int ncp = 0, nk = 0;
-    for (int i = 0; i <= ph; i++)
+    for (int i = 0; i <= ph && coef; i++)
         U[nk++] = refined.knots[spans[0]];
-    for (int sgi = 0; sgi < nseg; sgi++) {
+    for (int sgi = 0; sgi < nseg && coef; sgi++) {
         int k = spans[sgi];
         const double *B = refined.cp + (size_t)(k - p) * (size_t)stride;
         /* A breakpoint of multiplicity degree+1 (a possible jump) keeps
@@ -491,11 +583,11 @@ void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out)
             ncp++;
         }
     }
-    for (int i = 0; i <= ph; i++)
+    for (int i = 0; i <= ph && coef; i++)
         U[nk++] = refined.knots[spans[nseg - 1] + 1];
 
     /* Knot removal, breakpoint by breakpoint. */
-    for (int sgi = 1; sgi < nseg; sgi++) {
+    for (int sgi = 1; sgi < nseg && coef; sgi++) {
         double u = refined.knots[spans[sgi]];
         int target = multiplicity(c->knots, (int)knot_count(c), u) + times;
         for (;;) {
@@ -510,14 +602,23 @@ void sc_curve_elevate(const sc_curve *c, int times, sc_curve *out)
             remove_knot_once(U, P, &ncp, stride, ph, r, mult);
         }
     }
-    sc_curve_alloc(out, c->dim, ph, ncp);
-    memcpy(out->knots, U, sizeof(double) * (size_t)(ncp + ph + 1));
-    memcpy(out->cp, P, sizeof(double) * (size_t)ncp * (size_t)stride);
+    if (status == SC_OK)
+        status = op_curve_alloc(checked, out, c->dim, ph, ncp);
+    if (status == SC_OK) {
+        memcpy(out->knots, U, sizeof(double) * (size_t)(ncp + ph + 1));
+        memcpy(out->cp, P, sizeof(double) * (size_t)ncp * (size_t)stride);
+    }
     free(coef);
     free(U);
     free(P);
     free(spans);
     sc_curve_free(&refined);
+    return status;
+}
+
+int sc_curve_elevate(const sc_curve *c, int times, sc_curve *out)
+{
+    return elevate(1, c, times, out);
 }
 
 /* ------------------------------------------------------------------ */
@@ -544,16 +645,17 @@ typedef struct curve_job {
 
 static int job_outputs(const curve_job *job) { return job->kind == JOB_SPLIT ? 2 : 1; }
 
-static void run_job(const curve_job *job, const sc_curve *in, sc_curve out[2])
+static int run_job(int checked, const curve_job *job, const sc_curve *in, sc_curve out[2])
 {
     switch (job->kind) {
-    case JOB_INSERT: sc_curve_insert_knot(in, job->t, job->times, &out[0]); break;
-    case JOB_REFINE: sc_curve_refine(in, job->x, job->nx, &out[0]); break;
-    case JOB_SPLIT: sc_curve_split(in, job->t, &out[0], &out[1]); break;
-    case JOB_ELEVATE: sc_curve_elevate(in, job->times, &out[0]); break;
-    case JOB_CLAMP: sc_curve_clamp(in, &out[0]); break;
-    case JOB_RESTRICT: curve_restricted(in, job->t, job->t_end, &out[0]); break;
+    case JOB_INSERT: return insert_knot(checked, in, job->t, job->times, &out[0]);
+    case JOB_REFINE: return refine(checked, in, job->x, job->nx, &out[0]);
+    case JOB_SPLIT: return split(checked, in, job->t, &out[0], &out[1]);
+    case JOB_ELEVATE: return elevate(checked, in, job->times, &out[0]);
+    case JOB_CLAMP: return clamp(checked, in, &out[0]);
+    case JOB_RESTRICT: return curve_restricted(checked, in, job->t, job->t_end, &out[0]);
     }
+    return SC_FAIL;
 }
 
 /* Index of control point (i along dir, j across) in the surface array. */
@@ -563,9 +665,9 @@ static size_t line_index(int dir, int nu, int along, int across)
                     : (size_t)along * (size_t)nu + (size_t)across;
 }
 
-/* With `checked`, fails (out zeroed, nothing kept) when the surface-sized
- * arrays cannot be allocated; a row's scratch curves still use the aborting
- * allocation. Without, aborts as sc_alloc does. */
+/* With `checked`, fails (out zeroed, nothing kept) when memory runs out,
+ * for the surface-sized arrays or a row's curves. Without, aborts as
+ * sc_alloc does. */
 static int surface_run_job(const sc_surface *s, int dir, const curve_job *job, sc_surface *out,
                            int checked)
 {
@@ -576,8 +678,7 @@ static int surface_run_job(const sc_surface *s, int dir, const curve_job *job, s
     line.degree = dir == 0 ? s->deg_u : s->deg_v;
     line.ncp = along_n;
     line.knots = dir == 0 ? s->knots_u : s->knots_v;
-    line.cp = checked ? sc_try_alloc((size_t)along_n * 4, sizeof(double))
-                      : sc_alloc((size_t)along_n * 4, sizeof(double));
+    line.cp = op_alloc(checked, (size_t)along_n * 4, sizeof(double));
     memset(out, 0, sizeof *out * (size_t)nouts);
     if (!line.cp)
         return SC_FAIL;
@@ -585,7 +686,14 @@ static int surface_run_job(const sc_surface *s, int dir, const curve_job *job, s
         for (int i = 0; i < along_n; i++)
             copy_point(line.cp + 4 * i, s->cp + 4 * line_index(dir, s->nu, i, j), 4);
         sc_curve res[2];
-        run_job(job, &line, res);
+        if (run_job(checked, job, &line, res)) {
+            if (j > 0)
+                for (int k = 0; k < nouts; k++)
+                    sc_surface_free(&out[k]);
+            memset(out, 0, sizeof *out * (size_t)nouts);
+            free(line.cp);
+            return SC_FAIL;
+        }
         for (int o = 0; o < nouts; o++) {
             sc_surface *dst = &out[o];
             if (j == 0) {
@@ -692,11 +800,8 @@ int sc_surface_try_restrict(sc_surface *s, int dir, double a, double b)
     return surface_restrict(s, dir, a, b, 1);
 }
 
-void sc_surface_restrict(sc_surface *s, int dir, double a, double b)
-{
-    surface_restrict(s, dir, a, b, 0);
-}
-
+/* For the stages after reading (patches for hulls, GPU data and the
+ * reference): aborting. */
 static void surface_refine_to_bezier(const sc_surface *s, int dir, sc_surface *out)
 {
     int deg = dir == 0 ? s->deg_u : s->deg_v, n = dir == 0 ? s->nu : s->nv;

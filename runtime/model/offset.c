@@ -73,24 +73,25 @@ static int grid_lines(const double *knots, int nk, double a, double b, int split
             out[i] = a + (b - a) * i / cells;
         return cells + 1;
     }
-    double *tmp = malloc(sizeof(double) * (size_t)n);
+    double tmp[MAX_CELLS + 2];
     memcpy(tmp, out, sizeof(double) * (size_t)n);
     int m = 0;
     for (int i = 0; i + 1 < n; i++)
         for (int k = 0; k < split; k++)
             out[m++] = tmp[i] + (tmp[i + 1] - tmp[i]) * k / split;
     out[m++] = tmp[n - 1];
-    free(tmp);
     return m;
 }
 
-/* The bicubic Hermite fit on the grid gu x gv. */
-static void hermite_fit(const offset *o, const double *gu, int nu, const double *gv, int nv,
-                        sc_surface *out)
+/* The bicubic Hermite fit on the grid gu x gv; SC_FAIL when memory runs
+ * out (up to 385 x 385 control points). */
+static int hermite_fit(const offset *o, const double *gu, int nu, const double *gv, int nv,
+                       sc_surface *out)
 {
     memset(out, 0, sizeof *out);
     int cu = nu - 1, cv = nv - 1;
-    sc_surface_alloc(out, 3, 3, 3 * cu + 1, 3 * cv + 1);
+    if (sc_surface_try_alloc(out, 3, 3, 3 * cu + 1, 3 * cv + 1))
+        return SC_FAIL;
     for (int k = 0; k < 4; k++) {
         out->knots_u[k] = gu[0];
         out->knots_u[3 * cu + 1 + k] = gu[cu];
@@ -132,6 +133,7 @@ static void hermite_fit(const offset *o, const double *gu, int nu, const double 
                 }
         }
     sc_surface_update_rational(out);
+    return SC_OK;
 }
 
 static double fit_error(const offset *o, const sc_surface *fit, const double *gu, int nu,
@@ -157,28 +159,30 @@ int sc_offset_fit(const sc_surface *base, double d, double tol, sc_surface *out,
 {
     offset o = {.s = base, .d = d};
     sc_surface_domain(base, &o.dom[0], &o.dom[1], &o.dom[2], &o.dom[3]);
-    double *gu = malloc(sizeof(double) * (MAX_CELLS + 2));
-    double *gv = malloc(sizeof(double) * (MAX_CELLS + 2));
-    int status = SC_FAIL;
+    double gu[MAX_CELLS + 2], gv[MAX_CELLS + 2];
+    int status = SC_OFFSET_LOOSE;
+    memset(out, 0, sizeof *out);
+    *dev = 0;
     for (int split = 1; split <= MAX_CELLS; split *= 2) {
         int nu = grid_lines(base->knots_u, base->nu + base->deg_u + 1, o.dom[0], o.dom[1], split,
                             gu);
         int nv = grid_lines(base->knots_v, base->nv + base->deg_v + 1, o.dom[2], o.dom[3], split,
                             gv);
         sc_surface fit;
-        hermite_fit(&o, gu, nu, gv, nv, &fit);
+        if (hermite_fit(&o, gu, nu, gv, nv, &fit)) {
+            status = SC_FAIL;
+            break;
+        }
         double err = fit_error(&o, &fit, gu, nu, gv, nv);
         int last = err <= tol || ((nu - 1) * 2 > MAX_CELLS && (nv - 1) * 2 > MAX_CELLS) ||
                    split == MAX_CELLS;
         if (last) {
             *out = fit;
             *dev = err;
-            status = err <= tol ? SC_OK : SC_FAIL;
+            status = err <= tol ? SC_OK : SC_OFFSET_LOOSE;
             break;
         }
         sc_surface_free(&fit);
     }
-    free(gu);
-    free(gv);
     return status;
 }

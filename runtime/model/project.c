@@ -31,6 +31,7 @@ typedef struct proj {
      * split every piece to MAX_DEPTH, each split a global search). */
     double off_limit;
     int off;
+    int oom; /* memory ran out: nothing more is refined, the loop fails */
 } proj;
 
 typedef struct sample {
@@ -182,10 +183,20 @@ typedef struct piece_list {
     int n, cap;
 } piece_list;
 
-static void push_sample(piece_list *l, const sample *s)
+static void push_sample(proj *pj, piece_list *l, const sample *s)
 {
-    if (l->n == l->cap)
-        l->s = sc_realloc(l->s, (size_t)(l->cap = l->cap ? 2 * l->cap : 32), sizeof(sample));
+    if (pj->oom)
+        return;
+    if (l->n == l->cap) {
+        int cap = l->cap ? 2 * l->cap : 32;
+        sample *grown = sc_try_realloc(l->s, (size_t)cap, sizeof(sample));
+        if (!grown) {
+            pj->oom = 1;
+            return;
+        }
+        l->s = grown;
+        l->cap = cap;
+    }
     l->s[l->n++] = *s;
 }
 
@@ -219,7 +230,7 @@ static void refine(proj *pj, const sc_curve *c, const sample *a, const sample *b
                    piece_list *out)
 {
     double total, dev = piece_dev(pj, c, a, b, &total);
-    if (dev > pj->tol && depth < MAX_DEPTH && !pj->off) {
+    if (dev > pj->tol && depth < MAX_DEPTH && !pj->off && !pj->oom) {
         sample m;
         double guess[2];
         hermite(a, b, 0.5, guess);
@@ -229,15 +240,16 @@ static void refine(proj *pj, const sc_curve *c, const sample *a, const sample *b
         return;
     }
     pj->dev = fmax(pj->dev, total);
-    push_sample(out, b);
+    push_sample(pj, out, b);
 }
 
 /* The fitted pieces as one cubic curve on the 3D curve's parameter: knots
  * of multiplicity 3 at the piece ends. */
-static void to_curve(const piece_list *l, sc_curve *out)
+static int to_curve(const piece_list *l, sc_curve *out)
 {
     int pieces = l->n - 1;
-    sc_curve_alloc(out, 2, 3, 3 * pieces + 1);
+    if (sc_curve_try_alloc(out, 2, 3, 3 * pieces + 1))
+        return SC_FAIL;
     for (int i = 0; i < 4; i++) {
         out->knots[i] = l->s[0].t;
         out->knots[3 * pieces + 1 + i] = l->s[pieces].t;
@@ -264,15 +276,18 @@ static void to_curve(const piece_list *l, sc_curve *out)
             cp[2] = 1;
         }
     }
+    return SC_OK;
 }
 
-static void line2(const double a[2], const double b[2], sc_curve *out)
+static int line2(const double a[2], const double b[2], sc_curve *out)
 {
-    sc_curve_alloc(out, 2, 1, 2);
+    if (sc_curve_try_alloc(out, 2, 1, 2))
+        return SC_FAIL;
     out->knots[0] = out->knots[1] = 0;
     out->knots[2] = out->knots[3] = 1;
     double cp[6] = {a[0], a[1], 1, b[0], b[1], 1};
     memcpy(out->cp, cp, sizeof cp);
+    return SC_OK;
 }
 
 /* Whether the surface collapses along direction k at uv: a pole, where
@@ -342,8 +357,8 @@ static void follow(proj *pj, const sc_curve *c, const double start[2], piece_lis
     sample a;
     sample_at(pj, c, t0, start, &a);
     off_pole(pj, c, &a, t0 + in);
-    push_sample(l, &a);
-    for (int k = 1; k <= steps; k++) {
+    push_sample(pj, l, &a);
+    for (int k = 1; k <= steps && !pj->oom; k++) {
         sample b, last = l->s[l->n - 1];
         sample_at(pj, c, t0 + (t1 - t0) * k / steps, last.uv, &b);
         if (k == steps)
@@ -419,9 +434,11 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
     pj.closed[0] = sc_surface_closed(s, 0);
     pj.closed[1] = sc_surface_closed(s, 1);
     double size = fmax(pj.dom[1] - pj.dom[0], pj.dom[3] - pj.dom[2]);
-    *out = sc_alloc((size_t)2 * n + 1, sizeof(sc_curve));
     *nout = 0;
     *dev = 0;
+    *out = sc_try_alloc((size_t)2 * n + 1, sizeof(sc_curve));
+    if (!*out)
+        return SC_FAIL;
     double prev[2] = {0, 0}, first[2] = {0, 0}, seams[4 * MAX_SEAMS];
     int status = SC_OK, nseams = 0;
     for (int i = 0; i < n && status == SC_OK; i++) {
@@ -435,31 +452,42 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
             memcpy(prev, first, sizeof prev);
         }
         follow(&pj, c, prev, &l);
-        if (i > 0 && closed_curve(c, tol)) {
+        if (i > 0 && closed_curve(c, tol) && !pj.oom) {
             /* A closed edge (a whole circle) says nothing by its ends about
              * its direction, and written either way it runs on across the
              * seam to a different end: the direction that leads back
              * towards the loop's start is the loop's. */
             sc_curve rev;
             piece_list lr = {0};
-            sc_curve_copy(&rev, c);
-            sc_curve_reverse(&rev);
-            follow(&pj, &rev, prev, &lr);
-            const double *e = l.s[l.n - 1].uv, *er = lr.s[lr.n - 1].uv;
-            if (hypot(er[0] - first[0], er[1] - first[1]) < hypot(e[0] - first[0], e[1] - first[1])) {
-                free(l.s);
-                l = lr;
+            if (sc_curve_try_copy(&rev, c)) {
+                pj.oom = 1;
             } else {
-                free(lr.s);
+                sc_curve_reverse(&rev);
+                follow(&pj, &rev, prev, &lr);
+                sc_curve_free(&rev);
             }
-            sc_curve_free(&rev);
+            if (!pj.oom) {
+                const double *e = l.s[l.n - 1].uv, *er = lr.s[lr.n - 1].uv;
+                if (hypot(er[0] - first[0], er[1] - first[1]) <
+                    hypot(e[0] - first[0], e[1] - first[1])) {
+                    free(l.s);
+                    l = lr;
+                    lr.s = NULL;
+                }
+            }
+            free(lr.s);
+        }
+        if (pj.oom) {
+            free(l.s);
+            status = SC_FAIL;
+            break;
         }
         seam_side(&pj, &l, seams, &nseams);
         const double *a = l.s[0].uv;
         /* Newton ends within 1e-7 of the domain of where the last curve
          * ended: the same point, made exactly so. */
         if (i > 0 && hypot(a[0] - prev[0], a[1] - prev[1]) > 1e-7 * size)
-            line2(prev, a, &(*out)[(*nout)++]);
+            status = line2(prev, a, &(*out)[(*nout)++]);
         else if (i > 0)
             memcpy(l.s[0].uv, prev, sizeof prev);
         if (i == n - 1 && hypot(first[0] - l.s[l.n - 1].uv[0], first[1] - l.s[l.n - 1].uv[1]) <=
@@ -467,17 +495,19 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
             memcpy(l.s[l.n - 1].uv, first, sizeof first);
         if (i == 0)
             memcpy(first, l.s[0].uv, sizeof first);
-        to_curve(&l, &(*out)[(*nout)++]);
+        if (status == SC_OK)
+            status = to_curve(&l, &(*out)[(*nout)++]);
         prev[0] = l.s[l.n - 1].uv[0];
         prev[1] = l.s[l.n - 1].uv[1];
         free(l.s);
-        if (pj.dev > off_limit || pj.off)
-            status = SC_FAIL;
+        if (status == SC_OK && (pj.dev > off_limit || pj.off))
+            status = SC_PROJECT_OFF;
     }
     if (status == SC_OK && n > 0 && hypot(first[0] - prev[0], first[1] - prev[1]) > 1e-7 * size)
-        line2(prev, first, &(*out)[(*nout)++]);
+        status = line2(prev, first, &(*out)[(*nout)++]);
     *dev = pj.dev;
     if (status != SC_OK) {
+        /* a curve that failed to allocate is zeroed: freeing it is harmless */
         for (int i = 0; i < *nout; i++)
             sc_curve_free(&(*out)[i]);
         free(*out);

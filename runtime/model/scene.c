@@ -39,11 +39,24 @@ void sc_curve_free(sc_curve *c)
     memset(c, 0, sizeof *c);
 }
 
+static void copy_curve_arrays(sc_curve *dst, const sc_curve *src)
+{
+    memcpy(dst->knots, src->knots, sizeof(double) * (size_t)(src->ncp + src->degree + 1));
+    memcpy(dst->cp, src->cp, sizeof(double) * (size_t)src->ncp * (size_t)(src->dim + 1));
+}
+
 void sc_curve_copy(sc_curve *dst, const sc_curve *src)
 {
     sc_curve_alloc(dst, src->dim, src->degree, src->ncp);
-    memcpy(dst->knots, src->knots, sizeof(double) * (size_t)(src->ncp + src->degree + 1));
-    memcpy(dst->cp, src->cp, sizeof(double) * (size_t)src->ncp * (size_t)(src->dim + 1));
+    copy_curve_arrays(dst, src);
+}
+
+int sc_curve_try_copy(sc_curve *dst, const sc_curve *src)
+{
+    if (sc_curve_try_alloc(dst, src->dim, src->degree, src->ncp))
+        return SC_FAIL;
+    copy_curve_arrays(dst, src);
+    return SC_OK;
 }
 
 static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};

@@ -97,6 +97,7 @@ void sc_curve_copy(sc_curve *dst, const sc_curve *src);
 sc_surface *sc_scene_try_add_surface(sc_scene *scene);
 int sc_surface_try_alloc(sc_surface *s, int deg_u, int deg_v, int nu, int nv);
 int sc_curve_try_alloc(sc_curve *c, int dim, int degree, int ncp);
+int sc_curve_try_copy(sc_curve *dst, const sc_curve *src);
 void sc_surface_copy(sc_surface *dst, const sc_surface *src);
 /* Adds (or increments) a skipped-record. */
 void sc_scene_skip(sc_scene *scene, const char *type, const char *reason, int count);

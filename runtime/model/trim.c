@@ -193,7 +193,10 @@ static int prepare_loop(const sc_surface *s, int loop_index, piece_list *list, d
                                c, i, curve->cp[3 * i + 2]);
         sc_curve *segments = NULL;
         int nseg = 0;
-        sc_curve_to_bezier(curve, &segments, &nseg);
+        if (sc_curve_to_bezier(curve, &segments, &nseg)) {
+            list->failed = sc_alloc_failed_bytes();
+            break;
+        }
         for (int k = 0; k < nseg; k++) {
             add_segment_pieces(list, segments[k].cp, segments[k].degree, loop_index);
             sc_curve_free(&segments[k]);

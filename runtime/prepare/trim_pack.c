@@ -30,6 +30,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -215,7 +216,9 @@ static int even_coverage(const packed_piece *pieces, int count, float *ends)
  * its box opened to the left, so that it is never skipped there. */
 static int pack_loops(const packed_piece *pieces, int npieces, packed_loop *loops)
 {
-    float *ends = sc_alloc(2 * (size_t)npieces + 1, sizeof *ends);
+    float *ends = sc_try_alloc(2 * (size_t)npieces + 1, sizeof *ends);
+    if (!ends)
+        return -1;
     int nloops = 0;
     for (int k = 0; k < npieces;) {
         packed_loop *lp = &loops[nloops++];
@@ -252,6 +255,7 @@ typedef struct grid {
     int *first, *count;      /* per cell: its entries */
     grid_entry *entries;
     int nentries, cap;
+    size_t failed;           /* bytes that could not be allocated: the grid is unusable */
 } grid;
 
 /* A piece's part in one row: its bounds of u. */
@@ -272,9 +276,17 @@ static int grid_side(int npieces)
 
 static void add_entry(grid *gr, grid_entry e)
 {
+    if (gr->failed)
+        return;
     if (gr->nentries == gr->cap) {
-        gr->cap = gr->cap ? 2 * gr->cap : 64;
-        gr->entries = sc_realloc(gr->entries, (size_t)gr->cap, sizeof *gr->entries);
+        int cap = gr->cap ? 2 * gr->cap : 64;
+        grid_entry *grown = sc_try_realloc(gr->entries, (size_t)cap, sizeof *gr->entries);
+        if (!grown) {
+            gr->failed = (size_t)cap * sizeof *gr->entries;
+            return;
+        }
+        gr->entries = grown;
+        gr->cap = cap;
     }
     gr->entries[gr->nentries++] = e;
 }
@@ -333,12 +345,15 @@ static void build_grid(const packed_piece *pieces, int npieces, int degree, int 
     gr->cols = cols;
     gr->rows = rows;
     size_t ncells = (size_t)gr->cols * (size_t)gr->rows;
-    gr->parity = sc_alloc(ncells, sizeof *gr->parity);
-    gr->first = sc_alloc(ncells, sizeof *gr->first);
-    gr->count = sc_alloc(ncells, sizeof *gr->count);
-    row_part *parts = sc_alloc((size_t)npieces + 1, sizeof *parts);
-    float *flips = sc_alloc(2 * (size_t)npieces + 1, sizeof *flips);
-    for (int row = 0; row < gr->rows; row++) {
+    gr->parity = sc_try_alloc(ncells, sizeof *gr->parity);
+    gr->first = sc_try_alloc(ncells, sizeof *gr->first);
+    gr->count = sc_try_alloc(ncells, sizeof *gr->count);
+    row_part *parts = sc_try_alloc((size_t)npieces + 1, sizeof *parts);
+    float *flips = sc_try_alloc(2 * (size_t)npieces + 1, sizeof *flips);
+    if (!gr->parity || !gr->first || !gr->count || !parts || !flips)
+        gr->failed = ncells * 3 * sizeof(int) + ((size_t)npieces + 1) * sizeof *parts +
+                     (2 * (size_t)npieces + 1) * sizeof *flips;
+    for (int row = 0; row < gr->rows && !gr->failed; row++) {
         double y0 = grid_edge(row, gr->rows), y1 = grid_edge(row + 1, gr->rows);
         int nparts = 0;
         for (int k = 0; k < npieces; k++) {
@@ -395,7 +410,7 @@ static void fitting_grid(const packed_piece *pieces, int npieces, int nloops, in
     int cols = grid_side(npieces), rows = cols;
     for (;;) {
         build_grid(pieces, npieces, degree, bias, cols, rows, gr);
-        if (layout_of(nloops, npieces, degree, gr).total < SCG_TRIM_MAX_TEXELS ||
+        if (gr->failed || layout_of(nloops, npieces, degree, gr).total < SCG_TRIM_MAX_TEXELS ||
             (cols == 1 && rows == 1))
             return;
         free_grid(gr);
@@ -423,7 +438,10 @@ static int write_block(const packed_piece *pieces, int npieces, const packed_loo
     out->grid_v = gr->rows;
     out->nentries = gr->nentries;
     out->ntexels = (int)at.total;
-    out->texels = sc_alloc(4 * (size_t)out->ntexels, sizeof(float));
+    out->texels = sc_try_alloc(4 * (size_t)out->ntexels, sizeof(float));
+    if (!out->texels)
+        return sc_fail_oom(err, NULL, 0, 4 * (size_t)out->ntexels, sizeof(float),
+                           "a trim block");
     float *h = texel(out, 0);
     h[0] = (float)nloops;
     h[1] = (float)out->bias;
@@ -493,18 +511,30 @@ int sc_trim_pack(const sc_surface *s, int degree, sc_trim_block *out, sc_error *
         return SC_FAIL;
     double domain[4];
     sc_surface_domain(s, &domain[0], &domain[1], &domain[2], &domain[3]);
-    packed_piece *pieces = sc_alloc((size_t)trim->npieces + 1, sizeof *pieces);
-    int npieces = pack_pieces(trim, domain, degree, pieces);
-    packed_loop *loops = sc_alloc((size_t)npieces + 1, sizeof *loops);
-    int nloops = pack_loops(pieces, npieces, loops);
+    /* Every array here is as large as the surface's trim pieces. */
+    packed_piece *pieces = sc_try_alloc((size_t)trim->npieces + 1, sizeof *pieces);
+    int npieces = pieces ? pack_pieces(trim, domain, degree, pieces) : 0;
+    packed_loop *loops = pieces ? sc_try_alloc((size_t)npieces + 1, sizeof *loops) : NULL;
+    int nloops = loops ? pack_loops(pieces, npieces, loops) : -1;
     out->bias = trim->kept_without_crossings;
-    grid gr;
-    fitting_grid(pieces, npieces, nloops, degree, out->bias, &gr);
-    int status = write_block(pieces, npieces, loops, nloops, &gr, domain, out, err);
+    grid gr = {0};
+    if (nloops >= 0)
+        fitting_grid(pieces, npieces, nloops, degree, out->bias, &gr);
+    int status;
+    if (nloops < 0 || gr.failed) {
+        char what[160];
+        snprintf(what, sizeof what, "the trim block of surface '%s'", s->name);
+        status = sc_fail_oom(err, NULL, 0, gr.failed ? gr.failed : sc_alloc_failed_bytes(), 1,
+                             what);
+    } else {
+        status = write_block(pieces, npieces, loops, nloops, &gr, domain, out, err);
+    }
     free_grid(&gr);
     free(loops);
     free(pieces);
     sc_trim_free(trim);
+    if (status != SC_OK)
+        sc_trim_block_free(out);
     return status;
 }
 

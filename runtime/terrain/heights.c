@@ -17,11 +17,16 @@ void sc_heights_free(sc_heights *h)
     memset(h, 0, sizeof *h);
 }
 
-static void heights_alloc(sc_heights *h, int nx, int ny, int pad)
+/* SC_FAIL (h empty) when memory runs out: the grid's size comes from a
+ * file or a caller's count. */
+static int heights_alloc(sc_heights *h, int nx, int ny, int pad)
 {
     memset(h, 0, sizeof *h);
+    h->z = sc_try_alloc((size_t)(nx + 2 * pad) * (size_t)(ny + 2 * pad), sizeof *h->z);
+    if (!h->z)
+        return SC_FAIL;
     h->nx = nx; h->ny = ny; h->pad = pad;
-    h->z = sc_alloc((size_t)(nx + 2 * pad) * (size_t)(ny + 2 * pad), sizeof *h->z);
+    return SC_OK;
 }
 
 static double *heights_ref(sc_heights *h, int i, int j)
@@ -39,19 +44,24 @@ double sc_franke(double x, double y)
          - 0.2 * exp(-(a - 4) * (a - 4) - (b - 7) * (b - 7));
 }
 
-void sc_heights_franke(int n, int pad, sc_heights *out)
+int sc_heights_franke(int n, int pad, sc_heights *out)
 {
-    heights_alloc(out, n + 1, n + 1, pad);
+    if (heights_alloc(out, n + 1, n + 1, pad))
+        return SC_FAIL;
     out->dx = out->dy = 1.0 / n;
     for (int j = -pad; j <= n + pad; j++)
         for (int i = -pad; i <= n + pad; i++)
             *heights_ref(out, i, j) = sc_franke((double)i / n, (double)j / n);
+    return SC_OK;
 }
 
-void sc_heights_padded(const sc_heights *in, int pad, sc_heights *out)
+int sc_heights_padded(const sc_heights *in, int pad, sc_heights *out)
 {
     sc_heights h;
-    heights_alloc(&h, in->nx, in->ny, pad);
+    if (heights_alloc(&h, in->nx, in->ny, pad)) {
+        memset(out, 0, sizeof *out);
+        return SC_FAIL;
+    }
     h.x0 = in->x0; h.y0 = in->y0; h.dx = in->dx; h.dy = in->dy;
     int nx = in->nx, ny = in->ny;
     for (int j = 0; j < ny; j++)
@@ -73,6 +83,7 @@ void sc_heights_padded(const sc_heights *in, int pad, sc_heights *out)
                 2 * sc_heights_at(&h, i, ny - 1) - sc_heights_at(&h, i, ny - 1 - kk);
         }
     *out = h;
+    return SC_OK;
 }
 
 /* Builds the grid from values read top row first; fails (v freed) when

@@ -45,12 +45,13 @@ double sc_franke(double x, double y);
 /* Franke's function sampled at (n + 1)^2 points i/n, j/n, i, j = 0..n, and
  * `pad` more on every side (outside [0,1]^2, where the function is still
  * defined). */
-void sc_heights_franke(int n, int pad, sc_heights *out);
+int sc_heights_franke(int n, int pad, sc_heights *out);
 
+/* Both return SC_FAIL (*out empty) when memory runs out. */
 /* A copy of `in` (any pad) with pad `pad`: samples beyond the data are
  * extrapolated linearly from the boundary (2 z(0) - z(k)), which keeps
  * linear data linear. */
-void sc_heights_padded(const sc_heights *in, int pad, sc_heights *out);
+int sc_heights_padded(const sc_heights *in, int pad, sc_heights *out);
 
 void sc_heights_free(sc_heights *h);
 

@@ -48,7 +48,8 @@ int sc_spline_franke_heights(sc_spline_scheme s, int points, sc_heights *out, sc
         return sc_fail(err, NULL, 0, "%d data points: scheme %s needs N = n^2 with n a multiple "
                        "of %d, at most 4096 (144, 576, 2304, ...)", points,
                        sc_spline_scheme_name(s), k);
-    sc_heights_franke(n, sc_spline_pad(s), out);
+    if (sc_heights_franke(n, sc_spline_pad(s), out))
+        return sc_fail_oom(err, NULL, 0, sc_alloc_failed_bytes(), 1, "the heights");
     return SC_OK;
 }
 

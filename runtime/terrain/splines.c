@@ -256,12 +256,17 @@ int sc_spline_build(const sc_heights *h, sc_spline_scheme s, sc_tri_mesh *out, s
     const sc_heights *g = h;
     int own = 0;
     if (h->pad < pad) {
-        sc_heights_padded(h, pad, &padded);
+        if (sc_heights_padded(h, pad, &padded))
+            return sc_fail_oom(err, NULL, 0, sc_alloc_failed_bytes(), 1, "the padded heights");
         g = &padded;
         own = 1;
     }
     sc_tri_mesh m;
-    sc_tri_mesh_init(&m, 4, mx, my, h->x0, h->y0, k * h->dx, k * h->dy);
+    if (sc_tri_mesh_init(&m, 4, mx, my, h->x0, h->y0, k * h->dx, k * h->dy)) {
+        if (own)
+            sc_heights_free(&padded);
+        return sc_fail_oom(err, NULL, 0, sc_alloc_failed_bytes(), 1, "the spline's patches");
+    }
     int rc = SC_OK;
     switch (s) {
     case SC_SPLINE_C0: rc = build_c0(g, &m, err); break;

@@ -165,8 +165,8 @@ int sc_tri_interp_matrix(int n, double *inv, sc_error *err)
     return sc_tri_collocation_inverse(n, bary, inv, err);
 }
 
-void sc_tri_mesh_init(sc_tri_mesh *m, int degree, int nx, int ny, double x0, double y0,
-                      double hx, double hy)
+int sc_tri_mesh_init(sc_tri_mesh *m, int degree, int nx, int ny, double x0, double y0,
+                     double hx, double hy)
 {
     memset(m, 0, sizeof *m);
     m->degree = degree;
@@ -174,7 +174,12 @@ void sc_tri_mesh_init(sc_tri_mesh *m, int degree, int nx, int ny, double x0, dou
     m->nx = nx; m->ny = ny;
     m->x0 = x0; m->y0 = y0; m->hx = hx; m->hy = hy;
     m->count = 2 * nx * ny;
-    m->coef = sc_alloc((size_t)m->count * m->ncoef, sizeof *m->coef);
+    m->coef = sc_try_alloc((size_t)m->count * m->ncoef, sizeof *m->coef);
+    if (!m->coef) {
+        memset(m, 0, sizeof *m);
+        return SC_FAIL;
+    }
+    return SC_OK;
 }
 
 void sc_tri_mesh_free(sc_tri_mesh *m)

@@ -72,8 +72,9 @@ typedef struct sc_tri_mesh {
     double *coef;         /* count * ncoef */
 } sc_tri_mesh;
 
-/* Allocates coefficients (zeroed) for the given layout. */
-void sc_tri_mesh_init(sc_tri_mesh *m, int degree, int nx, int ny, double x0, double y0,
+/* Allocates coefficients (zeroed) for the given layout; SC_FAIL (m empty)
+ * when memory runs out. */
+int sc_tri_mesh_init(sc_tri_mesh *m, int degree, int nx, int ny, double x0, double y0,
                       double hx, double hy);
 void sc_tri_mesh_free(sc_tri_mesh *m);
 /* The domain triangle of patch p. */
