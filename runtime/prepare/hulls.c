@@ -2,8 +2,10 @@
  * from the world-space Bézier patches of each surface
  * (sc_surface_world_patches), the same ones the renderer packs into GPU
  * records; a Bézier patch is split further by de Casteljau (bezier.h),
- * which is knot insertion to full multiplicity. Hulls come from libqhull's reentrant API
- * with triangulated output ("Qt"). */
+ * which is knot insertion to full multiplicity. Hulls come from an
+ * incremental hull of the few control points (small_hull.h), and, for the
+ * sets it refuses (flat or nearly flat pieces), from libqhull's reentrant
+ * API with triangulated output ("Qt"). */
 #include "hulls.h"
 
 #include <libqhull_r/qhull_ra.h>
@@ -14,6 +16,7 @@
 
 #include "bezier.h"
 #include "nurbs.h"
+#include "small_hull.h"
 
 enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8 };
 
@@ -228,7 +231,11 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     int copies = 1;
     double *coords = sc_alloc((size_t)np * 3, sizeof(double));
     memcpy(coords, world, (size_t)np * 3 * sizeof(double));
-    int ntris = np >= 4 ? qhull_triangles(b, coords, np, &tris) : -1;
+    int ntris = np >= 4 ? sc_small_hull(coords, np, size, &tris) : -1;
+    if (ntris < 0) {
+        b->out->qhull_pieces++;
+        ntris = np >= 4 ? qhull_triangles(b, coords, np, &tris) : -1;
+    }
     if (ntris < 0) {
         /* Flat or collinear control points (a planar patch) have no 3D hull:
          * bound them by a thin slab, every point pushed a little along each
@@ -531,6 +538,7 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
     for (int i = 0; i < one.nindices; i++)
         hulls->indices[old->first_index + i] = one.indices[i] + (uint32_t)old->first_vertex;
     hulls->npatches += one.npatches - old->patch_count;
+    hulls->qhull_pieces += one.qhull_pieces;
     old->subpatch_count = one.count;
     old->vertex_count = one.nvertices;
     old->index_count = one.nindices;

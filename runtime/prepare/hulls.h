@@ -2,7 +2,8 @@
  * every surface is cut into Bézier patches, every patch into sub-patches —
  * uniformly (n × n) or adaptively (split until the control mesh is flat
  * within a tolerance, or a maximum depth) — and each sub-patch is bounded by
- * the convex hull of its control points (libqhull). Rasterising a hull
+ * the convex hull of its control points (small_hull.h; libqhull for flat
+ * pieces). Rasterising a hull
  * starts one ray per covered pixel; the hull carries the start values of
  * the intersection: the centre of its parameter rectangle ("mid") and, per
  * vertex, the parameters of the control point the vertex is ("cp").
@@ -81,6 +82,9 @@ typedef struct sc_hulls {
                             fixed when the hulls were built */
     double *surface_tolerance; /* the same per surface, when the desc gave
                             them; NULL otherwise */
+    long qhull_pieces;   /* sub-patches whose hull the small hull refused
+                            and qhull made, by the build and the surface
+                            updates since */
 } sc_hulls;
 
 /* Builds the hulls of every surface of the scene. Collapsed sub-patches (all
