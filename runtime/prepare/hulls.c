@@ -32,7 +32,8 @@ typedef struct piece {
 typedef struct builder {
     sc_hulls *out;
     int cap_sub, cap_vert, cap_idx;
-    FILE *qhull_log;             /* qhull's messages, kept out of stderr */
+    FILE *qhull_log;             /* qhull's messages, kept out of stderr;
+                                    opened when qhull first runs */
     const sc_surface *surface;
     int surface_index, patch_index;
     const sc_bezier_patch *patch;
@@ -232,6 +233,11 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     double *coords = sc_alloc((size_t)np * 3, sizeof(double));
     memcpy(coords, world, (size_t)np * 3 * sizeof(double));
     int ntris = np >= 4 ? sc_small_hull(coords, np, size, &tris) : -1;
+    if (ntris < 0 && !b->qhull_log && !(b->qhull_log = fopen("/dev/null", "w"))) {
+        free(world);
+        free(coords);
+        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
+    }
     if (ntris < 0) {
         b->out->qhull_pieces++;
         ntris = np >= 4 ? qhull_triangles(b, coords, np, &tris) : -1;
@@ -371,13 +377,15 @@ static int uniform(builder *b, const piece *whole, int n, sc_error *err)
 }
 
 /* A builder appending to out with the options of out->desc and out->tolerance. */
-static int builder_open(builder *b, sc_hulls *out, sc_error *err)
+static void builder_open(builder *b, sc_hulls *out)
 {
     *b = (builder){.out = out, .tolerance = out->tolerance, .max_depth = out->desc.max_depth};
-    b->qhull_log = fopen("/dev/null", "w");
-    if (!b->qhull_log)
-        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
-    return SC_OK;
+}
+
+static void builder_close(builder *b)
+{
+    if (b->qhull_log)
+        fclose(b->qhull_log);
 }
 
 /* Appends the hulls of surface si, built from its world-space patches,
@@ -440,15 +448,14 @@ int sc_hulls_build_from(const sc_scene *scene, const sc_patch_list *patches,
         hulls->desc.surface_tolerance = NULL; /* the caller's array need not outlive us */
     }
     builder b;
-    if (builder_open(&b, hulls, err) != SC_OK)
-        return SC_FAIL;
+    builder_open(&b, hulls);
     hulls->nsurfaces = scene->nsurfaces;
     hulls->surfaces = sc_alloc((size_t)(scene->nsurfaces ? scene->nsurfaces : 1),
                                sizeof *hulls->surfaces);
     int status = SC_OK;
     for (int si = 0; si < scene->nsurfaces && status == SC_OK; si++)
         status = build_surface(&b, scene, si, &patches[si], &hulls->surfaces[si], err);
-    fclose(b.qhull_log);
+    builder_close(&b);
     if (status != SC_OK)
         sc_hulls_free(hulls);
     return status;
@@ -493,11 +500,10 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
                     .tolerance = hulls->surface_tolerance ? hulls->surface_tolerance[surface]
                                                           : hulls->tolerance};
     builder b;
-    if (builder_open(&b, &one, err) != SC_OK)
-        return SC_FAIL;
+    builder_open(&b, &one);
     sc_hull_range fresh;
     int status = build_surface(&b, scene, surface, patches, &fresh, err);
-    fclose(b.qhull_log);
+    builder_close(&b);
     if (status != SC_OK) {
         sc_hulls_free(&one);
         return SC_FAIL;
