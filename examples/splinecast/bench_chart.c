@@ -209,6 +209,8 @@ typedef struct row {
     double frame_ms, image_ms, compile_ms;
     int frames;              /* timed */
     double tessellate_ms;    /* the peers: median over the timed frames */
+    double update_ms;        /* ray casting, deforming: the sc_update_surface
+                                calls of a frame, median */
     sc_comparison acc;
     size_t gpu_bytes;
     long triangles;
@@ -270,6 +272,7 @@ static int measure(drawer *d, sc_scene_id scene, const deformation *def, int vie
     double *draw = calloc((size_t)frames, sizeof(double));
     double *image = calloc((size_t)frames, sizeof(double));
     double *tessellate = calloc((size_t)frames, sizeof(double));
+    double *update = calloc((size_t)frames, sizeof(double));
     int ray = d->cfg->kind == KIND_RAY, status = SC_OK, timed = 0, drawn = 0;
     /* Frames beyond the first stop once a row has spent its time budget:
      * a configuration whose frame takes seconds (subdivision at 1024²)
@@ -280,6 +283,7 @@ static int measure(drawer *d, sc_scene_id scene, const deformation *def, int vie
         if (view == VIEW_DEFORMING)
             status = deform(scene, def, 2 * M_PI * (timed + 1) / 16.0, err);
         double t1 = sc_now();
+        update[timed] = 1e3 * (t1 - t0);
         if (status == SC_OK && (view == VIEW_DEFORMING || !ray))
             status = drawer_update(d, cam, err);
         double t2 = sc_now();
@@ -303,11 +307,13 @@ static int measure(drawer *d, sc_scene_id scene, const deformation *def, int vie
         r->frame_ms = cli_median(draw, timed);
         r->image_ms = cli_median(image, timed);
         r->tessellate_ms = cli_median(tessellate, timed);
+        r->update_ms = cli_median(update, timed);
         r->frames = timed;
     }
     free(draw);
     free(image);
     free(tessellate);
+    free(update);
     if (status == SC_OK && view == VIEW_DEFORMING)
         status = deform(scene, def, accuracy_phase, err);
     sc_frame_id frame = {0};
@@ -524,12 +530,15 @@ static int run_config(sc_context_id ctx, sc_scene_id scene, const config *cfg,
                 r.compile_ms);
         fflush(csv);
         /* The peers' image split: the median tessellation of the timed
-         * frames, the accuracy frame's upload and draw. */
+         * frames, the accuracy frame's upload and draw; ray casting's
+         * deforming rows: the median of the frames' surface updates. */
         char split[160] = "";
         sc_peer_info pi;
         if (cfg->kind != KIND_RAY && sc_query_peer_info(d.peer, &pi, NULL) == SC_OK)
             snprintf(split, sizeof split, " tessellate_ms=%.2f upload_ms=%.2f draw_ms=%.2f "
                      "vertices=%ld", r.tessellate_ms, pi.upload_ms, pi.draw_ms, pi.vertices);
+        else if (cfg->kind == KIND_RAY && v == VIEW_DEFORMING)
+            snprintf(split, sizeof split, " update_ms=%.2f", r.update_ms);
         fprintf(stderr, "chart: [%d/%d] %s %s frame_ms=%.2f image_ms=%.2f fail_pct=%.3f "
                         "pos_p99_px=%.3f normal_p99_deg=%.2f triangles=%ld frames=%d%s\n",
                 index, total, view_names[v], cfg->name, r.frame_ms, r.image_ms, r.acc.fail_pct,
