@@ -566,11 +566,12 @@ typedef struct sc_renderer_info {
                                   making included: the difference over a
                                   frame is what following the frame's
                                   sc_update_surface calls cost */
-    long long qhull_hulls;     /* sub-patches whose hull came from qhull
-                                  (flat or nearly flat pieces; the others
-                                  from a small incremental hull), by
-                                  sc_make_renderer and the sc_update_surface
-                                  calls since */
+    long long qhull_hulls;     /* sub-patches whose hull came from qhull:
+                                  every one sc_make_renderer made, and
+                                  those of the sc_update_surface calls
+                                  since that neither kept their triangles
+                                  nor got a small incremental hull (flat
+                                  pieces) */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);

@@ -2,10 +2,16 @@
  * from the world-space Bézier patches of each surface
  * (sc_surface_world_patches), the same ones the renderer packs into GPU
  * records; a Bézier patch is split further by de Casteljau (bezier.h),
- * which is knot insertion to full multiplicity. Hulls come from an
- * incremental hull of the few control points (small_hull.h), and, for the
- * sets it refuses (flat or nearly flat pieces), from libqhull's reentrant
- * API with triangulated output ("Qt"). */
+ * which is knot insertion to full multiplicity. A build's hulls come from
+ * libqhull's reentrant API with triangulated output ("Qt"). A surface
+ * update first keeps a piece's old triangles where they still bound its
+ * moved control points, then tries the incremental hull of small_hull.h,
+ * and leaves to qhull only the sets that refuses (flat or nearly flat
+ * pieces): qhull's set-up costs tens of microseconds a piece, the other
+ * two a few. Builds keep qhull, so that a renderer made from a scene draws
+ * exactly what it drew before: the small hull is the same convex body,
+ * but triangulates coplanar faces its own way, and the "view" and "cp"
+ * starts interpolate over the triangles. */
 #include "hulls.h"
 
 #include <libqhull_r/qhull_ra.h>
@@ -39,6 +45,10 @@ typedef struct builder {
     const sc_bezier_patch *patch;
     double tolerance;            /* absolute, world units */
     int max_depth;
+    /* An update: the surface's hulls before it (prev's sub-patches
+     * [prev_next, prev_end)), whose triangles its pieces may keep. */
+    const sc_hulls *prev;
+    int prev_next, prev_end;
 } builder;
 
 /* ---- Bézier pieces ---- */
@@ -199,6 +209,64 @@ static int qhull_triangles(builder *b, double *coords, int n, int **tris)
     return count;
 }
 
+/* The input points of a piece's hull, n control points relative to its
+ * middle: each once, or (copies 6) each pushed 1e-5 of the piece's size
+ * along each axis both ways, a thin slab around flat or collinear points,
+ * which have no 3D hull. */
+static double *input_points(const double *world, int n, int copies, double size)
+{
+    double *coords = sc_alloc((size_t)n * (size_t)copies * 3, sizeof(double));
+    double eps = 1e-5 * size;
+    for (int k = 0; k < n; k++)
+        for (int c = 0; c < copies; c++) {
+            double *q = coords + 3 * (copies * k + c);
+            memcpy(q, world + 3 * k, 3 * sizeof(double));
+            if (copies > 1)
+                q[c / 2] += c % 2 ? eps : -eps;
+        }
+    return coords;
+}
+
+/* In an update, the hull the piece had before: the next of the surface's
+ * old sub-patches from the same Bézier patch with the same rectangle (the
+ * refinement visits pieces in the same order each time, so a forward
+ * search from the last one found meets them in turn). */
+static const sc_subpatch *previous_piece(builder *b, const piece *p)
+{
+    for (int k = b->prev_next; b->prev && k < b->prev_end; k++) {
+        const sc_subpatch *s = &b->prev->subpatches[k];
+        if (s->patch > b->patch_index)
+            break;
+        if (s->patch == b->patch_index && s->copies > 0 &&
+            !memcmp(s->local, p->local, sizeof s->local)) {
+            b->prev_next = k + 1;
+            return s;
+        }
+    }
+    return NULL;
+}
+
+/* The triangles of the old hull `before`, in the numbers of its input
+ * points, when they still bound the n moved ones (coords):
+ * sc_small_hull_bounds. Returns their count, or -1. */
+static int kept_triangles(const sc_hulls *prev, const sc_subpatch *before, const double *coords,
+                          int n, double size, int **tris)
+{
+    int ntris = before->index_count / 3;
+    int *t = sc_alloc((size_t)(3 * ntris > 0 ? 3 * ntris : 1), sizeof(int));
+    int ok = ntris > 0;
+    for (int i = 0; i < 3 * ntris && ok; i++) {
+        t[i] = prev->vertices[prev->indices[before->first_index + i]].source;
+        ok = t[i] >= 0 && t[i] < n;
+    }
+    if (!ok || !sc_small_hull_bounds(coords, n, t, ntris, size)) {
+        free(t);
+        return -1;
+    }
+    *tris = t;
+    return ntris;
+}
+
 /* The hull of one piece, appended as a sub-patch. */
 static int emit_hull(builder *b, const piece *p, sc_error *err)
 {
@@ -228,11 +296,22 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     for (int k = 0; k < np; k++)
         for (int c = 0; c < 3; c++)
             world[3 * k + c] -= mid[c];
-    int *tris = NULL;
-    int copies = 1;
-    double *coords = sc_alloc((size_t)np * 3, sizeof(double));
-    memcpy(coords, world, (size_t)np * 3 * sizeof(double));
-    int ntris = np >= 4 ? sc_small_hull(coords, np, size, &tris) : -1;
+    int *tris = NULL, ntris = -1, copies = 1;
+    double *coords = NULL;
+    const sc_subpatch *before = previous_piece(b, p);
+    if (before) {
+        copies = before->copies;
+        coords = input_points(world, np, copies, size);
+        ntris = kept_triangles(b->prev, before, coords, np * copies, size, &tris);
+        b->out->kept_pieces += ntris >= 0;
+    }
+    if (ntris < 0) {
+        free(coords);
+        copies = 1;
+        coords = input_points(world, np, 1, size);
+        if (b->prev && np >= 4)
+            ntris = sc_small_hull(coords, np, size, &tris);
+    }
     if (ntris < 0 && !b->qhull_log && !(b->qhull_log = fopen("/dev/null", "w"))) {
         free(world);
         free(coords);
@@ -244,17 +323,10 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     }
     if (ntris < 0) {
         /* Flat or collinear control points (a planar patch) have no 3D hull:
-         * bound them by a thin slab, every point pushed a little along each
-         * axis both ways. */
+         * bound them by a thin slab. */
         copies = 6;
-        double eps = 1e-5 * size;
-        coords = sc_realloc(coords, (size_t)np * 6 * 3, sizeof(double));
-        for (int k = 0; k < np; k++)
-            for (int c = 0; c < 6; c++) {
-                double *q = coords + 3 * (6 * k + c);
-                memcpy(q, world + 3 * k, 3 * sizeof(double));
-                q[c / 2] += c % 2 ? eps : -eps;
-            }
+        free(coords);
+        coords = input_points(world, np, 6, size);
         ntris = qhull_triangles(b, coords, np * 6, &tris);
     }
     free(world);
@@ -279,6 +351,7 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     s->domain[3] = bp->v0 + (bp->v1 - bp->v0) * p->local[3];
     s->first_vertex = h->nvertices;
     s->first_index = h->nindices;
+    s->copies = copies;
     for (int c = 0; c < 3; c++) {
         s->lo[c] = INFINITY;
         s->hi[c] = -INFINITY;
@@ -294,6 +367,7 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
             int cp_index = k / copies;
             int i = cp_index % (p->deg_u + 1), j = cp_index / (p->deg_u + 1);
             sc_hull_vertex *v = &h->vertices[h->nvertices];
+            v->source = k;
             for (int c = 0; c < 3; c++)
                 v->pos[c] = coords[3 * k + c] + mid[c];
             v->uv[0] = p->local[0] + (p->local[1] - p->local[0]) * i / p->deg_u;
@@ -501,6 +575,9 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
                                                           : hulls->tolerance};
     builder b;
     builder_open(&b, &one);
+    b.prev = hulls;
+    b.prev_next = hulls->surfaces[surface].first_subpatch;
+    b.prev_end = b.prev_next + hulls->surfaces[surface].subpatch_count;
     sc_hull_range fresh;
     int status = build_surface(&b, scene, surface, patches, &fresh, err);
     builder_close(&b);
@@ -545,6 +622,7 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
         hulls->indices[old->first_index + i] = one.indices[i] + (uint32_t)old->first_vertex;
     hulls->npatches += one.npatches - old->patch_count;
     hulls->qhull_pieces += one.qhull_pieces;
+    hulls->kept_pieces += one.kept_pieces;
     old->subpatch_count = one.count;
     old->vertex_count = one.nvertices;
     old->index_count = one.nindices;
