@@ -92,27 +92,27 @@ static double dist3(const double a[3], const double b[3])
  * the lines along u from their chords, against those along v). */
 static double piece_flatness(const builder *b, const piece *p, int *split_dir)
 {
-    int du = p->deg_u, dv = p->deg_v;
-    double c00[3], c10[3], c01[3], c11[3];
-    piece_point(p, 0, 0, c00);
-    piece_point(p, du, 0, c10);
-    piece_point(p, 0, dv, c01);
-    piece_point(p, du, dv, c11);
+    int du = p->deg_u, dv = p->deg_v, row = du + 1;
+    /* The Euclidean points once (a surface update refines every piece of
+     * a surface again, so this runs for every piece of every frame). */
+    double *e = sc_alloc(piece_points(p) * 3, sizeof(double));
+    for (int j = 0; j <= dv; j++)
+        for (int i = 0; i <= du; i++)
+            piece_point(p, i, j, e + 3 * (j * row + i));
+#define E(i, j) (e + 3 * ((j) * row + (i)))
+    const double *c00 = E(0, 0), *c10 = E(du, 0), *c01 = E(0, dv), *c11 = E(du, dv);
     double bilinear = 0, along_u = 0, along_v = 0;
     for (int j = 0; j <= dv; j++)
         for (int i = 0; i <= du; i++) {
-            double s = (double)i / du, t = (double)j / dv, q[3], x[3];
-            piece_point(p, i, j, x);
+            double s = (double)i / du, t = (double)j / dv, q[3];
+            const double *x = E(i, j);
             for (int c = 0; c < 3; c++)
                 q[c] = (1 - t) * ((1 - s) * c00[c] + s * c10[c]) +
                        t * ((1 - s) * c01[c] + s * c11[c]);
             bilinear = fmax(bilinear, dist3(x, q));
             /* chords of the row j (along u) and of the column i (along v) */
-            double r0[3], r1[3], k0[3], k1[3], on_row[3], on_col[3];
-            piece_point(p, 0, j, r0);
-            piece_point(p, du, j, r1);
-            piece_point(p, i, 0, k0);
-            piece_point(p, i, dv, k1);
+            const double *r0 = E(0, j), *r1 = E(du, j), *k0 = E(i, 0), *k1 = E(i, dv);
+            double on_row[3], on_col[3];
             for (int c = 0; c < 3; c++) {
                 on_row[c] = (1 - s) * r0[c] + s * r1[c];
                 on_col[c] = (1 - t) * k0[c] + t * k1[c];
@@ -120,6 +120,8 @@ static double piece_flatness(const builder *b, const piece *p, int *split_dir)
             along_u = fmax(along_u, dist3(x, on_row));
             along_v = fmax(along_v, dist3(x, on_col));
         }
+#undef E
+    free(e);
     *split_dir = along_u >= along_v ? 0 : 1;
     return bilinear;
 }
