@@ -215,7 +215,10 @@ typedef struct sc_surface_desc {
 
 /* Replaces a surface's control points and updates every renderer drawing
  * the scene: each rebuilds that surface's hulls (with the hull tolerance
- * it was made with) and rewrites its patch data and hull vertices alone.
+ * it was made with; without qhull where the old triangles or a small hull
+ * of its own do) and rewrites its patch data alone; the hull vertices of
+ * all the surfaces updated since the last frame go with the next frame
+ * (or sc_query_renderer_info), each once.
  * Refused, changing nothing, when renderers draw the scene and the new
  * weights would make the surface rational or polynomial (a new variant
  * key: make new renderers). The CPU reference and keys queried afterwards
