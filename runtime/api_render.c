@@ -254,6 +254,10 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
     /* The intersection count is read from the renderer's GL buffer. */
     if (sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
+    /* What the surface updates since the last frame left is sent now, so
+     * that uploaded_bytes counts it. */
+    if (sc_renderer_send_updates(r->renderer, err) != SC_OK)
+        return SC_FAIL;
     sc_render_stats stats;
     sc_renderer_stats(r->renderer, &stats);
     *info = (sc_renderer_info){
@@ -270,6 +274,8 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .intersections = stats.intersections,
         .intersect_ms = stats.intersect_ms,
         .intersect_query_ms = stats.intersect_query_ms,
+        .uploaded_total_bytes = stats.bytes_uploaded_total,
+        .qhull_hulls = stats.qhull_hulls,
     };
     if (!sc_scene_view_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi))
         sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);

@@ -728,8 +728,9 @@ static int against_fresh_and_reference(const sc_gl *gl, sc_renderer *r, const sc
  * teapot lifted (its hulls keep their counts), then bent inwards (adaptive
  * subdivision cuts it into more pieces), the scene's box unchanged. Each
  * time its image equals a fresh renderer's and the reference's, and what
- * went to the GPU is that surface's patch data and hull vertices — every
- * hull vertex when its hulls changed number, since the later ones moved. */
+ * went to the GPU (sent by sc_renderer_send_updates, as the next frame
+ * would) is that surface's patch data and hull vertices — every hull
+ * vertex when its hulls grew in number past what the buffer holds. */
 TEST(gl_render_update_one_surface)
 {
     const char *why;
@@ -760,6 +761,7 @@ TEST(gl_render_update_one_surface)
     CHECK(against_fresh_and_reference(gl, r, &scene, &cam, &vs_fresh, &vs_ref, &hits));
     CHECK(vs_ref > 1);
     CHECK_INT(sc_renderer_update_surface(r, 4, &err), SC_OK);
+    CHECK_INT(sc_renderer_send_updates(r, &err), SC_OK);
     sc_renderer_stats(r, &st);
     sc_hulls hulls;
     CHECK_INT(sc_hulls_build(&scene, NULL, &hulls, &err), SC_OK);
@@ -777,6 +779,7 @@ TEST(gl_render_update_one_surface)
         for (int c = 0; c < 2; c++)
             body->cp[4 * k + c] *= 0.2;
     CHECK_INT(sc_renderer_update_surface(r, 4, &err), SC_OK);
+    CHECK_INT(sc_renderer_send_updates(r, &err), SC_OK);
     sc_renderer_stats(r, &st);
     CHECK_INT(sc_hulls_build(&scene, NULL, &hulls, &err), SC_OK);
     size_t bent = patch_bytes + (size_t)hulls.nvertices * vertex_bytes;

@@ -72,4 +72,9 @@ int bench_accuracy_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc de
 int bench_peak_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
                    const sc_camera_desc *cam, int frames);
 
+/* `--update` (bench_update.c): every surface moved through
+ * sc_update_surface before each frame; returns the exit status. */
+int bench_update_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                     const sc_camera_desc *cam, int frames);
+
 #endif

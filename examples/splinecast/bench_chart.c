@@ -18,6 +18,7 @@
 
 #include "chart.h"
 #include "commands.h"
+#include "deform.h"
 #include "options.h"
 
 static const char usage[] =
@@ -196,76 +197,11 @@ static int selected(const char *list, const char *name)
 enum { VIEW_WHOLE, VIEW_CLOSEUP8, VIEW_DEFORMING, VIEW_COUNT };
 static const char *const view_names[VIEW_COUNT] = {"whole", "closeup8", "deforming"};
 
-/* Every surface's control points as read, and the wave that moves them. */
-typedef struct deformation {
-    int nsurfaces;
-    int *counts;
-    double **points;         /* 3 per point, the surfaces' own coordinates */
-    double amplitude, wavelength;
-} deformation;
-
 /* Time one row's timed frames may take before the next is left out (ms). */
 static const double row_budget_ms = 2000;
 
 /* The phase of the frame the accuracy of the deforming view is taken at. */
 static const double accuracy_phase = 1.0;
-
-static int deformation_init(sc_scene_id scene, deformation *d, sc_error *err)
-{
-    sc_scene_info info;
-    if (sc_query_scene_info(scene, &info, err) != SC_OK)
-        return SC_FAIL;
-    double diag = 0;
-    for (int c = 0; c < 3; c++)
-        diag += (info.hi[c] - info.lo[c]) * (info.hi[c] - info.lo[c]);
-    diag = sqrt(diag);
-    /* A wave of 1 % of the scene's size, three per scene: non-rigid, small
-     * enough that the view still frames the scene. */
-    d->amplitude = 0.01 * diag;
-    d->wavelength = diag / 3;
-    d->nsurfaces = info.surfaces;
-    d->counts = calloc((size_t)info.surfaces, sizeof(int));
-    d->points = calloc((size_t)info.surfaces, sizeof(double *));
-    for (int s = 0; s < info.surfaces; s++) {
-        sc_surface_info si;
-        if (sc_query_surface_info(scene, s, &si, err) != SC_OK)
-            return SC_FAIL;
-        d->counts[s] = si.nu * si.nv;
-        d->points[s] = malloc((size_t)d->counts[s] * 3 * sizeof(double));
-        if (sc_query_surface_points(scene, s, d->points[s], NULL, d->counts[s], err) != SC_OK)
-            return SC_FAIL;
-    }
-    return SC_OK;
-}
-
-static void deformation_free(deformation *d)
-{
-    for (int s = 0; s < d->nsurfaces; s++)
-        free(d->points[s]);
-    free(d->points);
-    free(d->counts);
-}
-
-/* Moves every control point: z += A sin(2π (x + y) / λ + phase); phase
- * NAN puts the points back as read. */
-static int deform(sc_scene_id scene, const deformation *d, double phase, sc_error *err)
-{
-    for (int s = 0; s < d->nsurfaces; s++) {
-        int n = d->counts[s];
-        double *p = malloc((size_t)n * 3 * sizeof(double));
-        memcpy(p, d->points[s], (size_t)n * 3 * sizeof(double));
-        if (!isnan(phase))
-            for (int i = 0; i < n; i++)
-                p[3 * i + 2] += d->amplitude *
-                                sin(2 * M_PI * (p[3 * i] + p[3 * i + 1]) / d->wavelength + phase);
-        sc_surface_desc sd = {.surface = s, .count = n, .points = p};
-        int status = sc_update_surface(scene, &sd, err);
-        free(p);
-        if (status != SC_OK)
-            return SC_FAIL;
-    }
-    return SC_OK;
-}
 
 /* ---- one row ---- */
 
@@ -273,6 +209,8 @@ typedef struct row {
     double frame_ms, image_ms, compile_ms;
     int frames;              /* timed */
     double tessellate_ms;    /* the peers: median over the timed frames */
+    double update_ms;        /* ray casting, deforming: the sc_update_surface
+                                calls of a frame, median */
     sc_comparison acc;
     size_t gpu_bytes;
     long triangles;
@@ -334,6 +272,7 @@ static int measure(drawer *d, sc_scene_id scene, const deformation *def, int vie
     double *draw = calloc((size_t)frames, sizeof(double));
     double *image = calloc((size_t)frames, sizeof(double));
     double *tessellate = calloc((size_t)frames, sizeof(double));
+    double *update = calloc((size_t)frames, sizeof(double));
     int ray = d->cfg->kind == KIND_RAY, status = SC_OK, timed = 0, drawn = 0;
     /* Frames beyond the first stop once a row has spent its time budget:
      * a configuration whose frame takes seconds (subdivision at 1024²)
@@ -344,6 +283,7 @@ static int measure(drawer *d, sc_scene_id scene, const deformation *def, int vie
         if (view == VIEW_DEFORMING)
             status = deform(scene, def, 2 * M_PI * (timed + 1) / 16.0, err);
         double t1 = sc_now();
+        update[timed] = 1e3 * (t1 - t0);
         if (status == SC_OK && (view == VIEW_DEFORMING || !ray))
             status = drawer_update(d, cam, err);
         double t2 = sc_now();
@@ -367,11 +307,13 @@ static int measure(drawer *d, sc_scene_id scene, const deformation *def, int vie
         r->frame_ms = cli_median(draw, timed);
         r->image_ms = cli_median(image, timed);
         r->tessellate_ms = cli_median(tessellate, timed);
+        r->update_ms = cli_median(update, timed);
         r->frames = timed;
     }
     free(draw);
     free(image);
     free(tessellate);
+    free(update);
     if (status == SC_OK && view == VIEW_DEFORMING)
         status = deform(scene, def, accuracy_phase, err);
     sc_frame_id frame = {0};
@@ -588,12 +530,15 @@ static int run_config(sc_context_id ctx, sc_scene_id scene, const config *cfg,
                 r.compile_ms);
         fflush(csv);
         /* The peers' image split: the median tessellation of the timed
-         * frames, the accuracy frame's upload and draw. */
+         * frames, the accuracy frame's upload and draw; ray casting's
+         * deforming rows: the median of the frames' surface updates. */
         char split[160] = "";
         sc_peer_info pi;
         if (cfg->kind != KIND_RAY && sc_query_peer_info(d.peer, &pi, NULL) == SC_OK)
             snprintf(split, sizeof split, " tessellate_ms=%.2f upload_ms=%.2f draw_ms=%.2f "
                      "vertices=%ld", r.tessellate_ms, pi.upload_ms, pi.draw_ms, pi.vertices);
+        else if (cfg->kind == KIND_RAY && v == VIEW_DEFORMING)
+            snprintf(split, sizeof split, " update_ms=%.2f", r.update_ms);
         fprintf(stderr, "chart: [%d/%d] %s %s frame_ms=%.2f image_ms=%.2f fail_pct=%.3f "
                         "pos_p99_px=%.3f normal_p99_deg=%.2f triangles=%ld frames=%d%s\n",
                 index, total, view_names[v], cfg->name, r.frame_ms, r.image_ms, r.acc.fail_pct,

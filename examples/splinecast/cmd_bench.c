@@ -86,7 +86,19 @@ static const char usage[] =
     "                         achieve on SCENE (FLOPs counted from their IR for\n"
     "                         the iterations each pixel ran, over the GPU time\n"
     "                         of the hull draws): one line\n"
-    "                           peak gflops=G achieved_gflops=A fraction=F ...\n";
+    "                           peak gflops=G achieved_gflops=A fraction=F ...\n"
+    "  --update               every control point of every surface moved before\n"
+    "                         each frame (the chart's deforming wave) through\n"
+    "                         sc_update_surface: one line\n"
+    "                           bench variant=update surfaces=S hulls=H update_ms=U\n"
+    "                                 update_us_per_hull=X frame_ms=F still_frame_ms=S\n"
+    "                                 image_ms=I uploaded_bytes_per_frame=B gpu_bytes=G\n"
+    "                                 uploaded_fraction=R qhull_hulls_per_frame=Q\n"
+    "                         (update_ms: the updates of one frame; frame_ms: the\n"
+    "                         frame drawn after them; still_frame_ms: a frame of\n"
+    "                         unchanged data; qhull_hulls_per_frame: hulls of\n"
+    "                         flat pieces, which the small hull leaves to qhull;\n"
+    "                         medians of the frames)\n";
 
 /* A bumpy Bézier patch of degree d × d over [-1, 1]², heights from a fixed
  * pseudo-random sequence, so that Newton has work at every degree: a .bpt
@@ -180,7 +192,7 @@ int cmd_bench(int argc, char **argv)
     sc_method methods[BENCH_MAX_METHODS];
     int nmethods = 0;
     double target_px[BENCH_MAX_TARGETS], target_deg[BENCH_MAX_TARGETS];
-    int ntargets = 0, peak = 0, colour_only = 0;
+    int ntargets = 0, peak = 0, colour_only = 0, update = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *next = i + 1 < argc ? argv[i + 1] : NULL;
         char *end;
@@ -233,6 +245,8 @@ int cmd_bench(int argc, char **argv)
             colour_only = 1;
         } else if (!strcmp(a, "--peak")) {
             peak = 1;
+        } else if (!strcmp(a, "--update")) {
+            update = 1;
         } else if (!strcmp(a, "--ert") && next) {
             if ((status = bench_sweep_parse_erts(argv[++i], &sweep)) != 0)
                 return status;
@@ -286,6 +300,8 @@ int cmd_bench(int argc, char **argv)
         status = cli_usage_error("bench", "--camera: %s", err.message);
     } else if (peak) {
         status = bench_peak_run(ctx, scene, desc, &cam, frames);
+    } else if (update) {
+        status = bench_update_run(ctx, scene, desc, &cam, frames);
     } else if (ntargets) {
         status = bench_accuracy_run(ctx, scene, desc, &cam, frames, target_px, target_deg,
                                     ntargets);

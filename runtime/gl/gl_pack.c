@@ -237,6 +237,7 @@ int sc_renderer_create_packed(const sc_gl *gl, const sc_pack *pack, const sc_ren
     sc_prepare_groups(r);
     sc_prepare_group_hulls(r);
     r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded + r->colour_bytes;
+    r->bytes_uploaded_total = r->bytes_uploaded;
     *out = r;
     return SC_OK;
 fail:

@@ -152,6 +152,20 @@ size_t sc_prepare_gpu_bytes(const sc_renderer *r)
     return r->data.bytes + vbytes + ibytes + colour_buffer_bytes(r->scene);
 }
 
+/* The per-hull scratch of a frame, sized for r->hulls. */
+static void size_scratch(sc_renderer *r)
+{
+    const sc_hulls *h = &r->hulls;
+    r->frame_indices = sc_realloc(r->frame_indices, (size_t)(h->nindices ? h->nindices : 1),
+                                  sizeof(uint32_t));
+    size_t count = (size_t)(h->count ? h->count : 1);
+    r->distance = sc_realloc(r->distance, count, sizeof(double));
+    r->items = sc_realloc(r->items, count, sizeof *r->items);
+    r->inside = sc_realloc(r->inside, count, sizeof *r->inside);
+    /* At most one run per hull, plus the inside hulls' runs per group. */
+    r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
+}
+
 /* Every hull into new vertex and index buffers, and the per-hull scratch
  * of a frame sized for them. */
 static int upload_hulls(sc_renderer *r, sc_error *err)
@@ -182,37 +196,66 @@ int sc_prepare_upload_hull_buffers(sc_renderer *r, const gpu_vertex *verts, sc_e
     gl->NamedBufferStorage(r->index_buffer, (GLsizeiptr)ibytes, NULL, GL_DYNAMIC_STORAGE_BIT);
     r->hull_bytes = vbytes + ibytes;
     r->hull_bytes_uploaded = vbytes;
+    r->vertex_capacity = h->nvertices;
+    r->index_capacity = h->nindices;
     GLuint vao = r->vertex_array;
     gl->VertexArrayVertexBuffer(vao, 0, r->vertex_buffer, 0, sizeof(gpu_vertex));
     gl->VertexArrayElementBuffer(vao, r->index_buffer);
-    r->frame_indices = sc_realloc(r->frame_indices, (size_t)(h->nindices ? h->nindices : 1),
-                                  sizeof(uint32_t));
-    size_t count = (size_t)(h->count ? h->count : 1);
-    r->distance = sc_realloc(r->distance, count, sizeof(double));
-    r->items = sc_realloc(r->items, count, sizeof *r->items);
-    r->inside = sc_realloc(r->inside, count, sizeof *r->inside);
-    /* At most one run per hull, plus the inside hulls' runs per group. */
-    r->runs = sc_realloc(r->runs, 2 * count, sizeof *r->runs);
+    size_scratch(r);
     return sc_gl_check_upload(gl, "uploading the hulls", sc_prepare_gpu_bytes(r), err);
 }
 
-/* The vertices of surface s's hulls, rewritten in their range of the
- * vertex buffer (its hulls kept their counts, so nothing else moved; the
- * index buffer is written every frame anyway). */
-static int upload_surface_hulls(sc_renderer *r, int s, sc_error *err)
+/* The hull vertices of surfaces [first, end) — contiguous in the vertex
+ * buffer — rewritten in their range; returns the bytes sent. */
+static size_t send_surfaces(sc_renderer *r, int first, int end)
 {
-    const sc_gl *gl = r->gl;
-    const sc_hull_range *range = &r->hulls.surfaces[s];
-    r->hull_bytes_uploaded = (size_t)range->vertex_count * sizeof(gpu_vertex);
-    if (!range->vertex_count)
-        return SC_OK;
-    gpu_vertex *verts = sc_alloc((size_t)range->vertex_count, sizeof *verts);
-    sc_prepare_fill_vertices(r, range->first_subpatch, range->subpatch_count, verts);
-    gl->NamedBufferSubData(r->vertex_buffer,
-                           (GLintptr)((size_t)range->first_vertex * sizeof(gpu_vertex)),
-                           (GLsizeiptr)r->hull_bytes_uploaded, verts);
+    const sc_hull_range *a = &r->hulls.surfaces[first], *z = &r->hulls.surfaces[end - 1];
+    int nverts = z->first_vertex + z->vertex_count - a->first_vertex;
+    int nsub = z->first_subpatch + z->subpatch_count - a->first_subpatch;
+    if (nverts <= 0)
+        return 0;
+    gpu_vertex *verts = sc_alloc((size_t)nverts, sizeof *verts);
+    sc_prepare_fill_vertices(r, a->first_subpatch, nsub, verts);
+    size_t bytes = (size_t)nverts * sizeof(gpu_vertex);
+    r->gl->NamedBufferSubData(r->vertex_buffer,
+                              (GLintptr)((size_t)a->first_vertex * sizeof(gpu_vertex)),
+                              (GLsizeiptr)bytes, verts);
     free(verts);
-    return sc_gl_check(gl, "updating a surface's hulls", err);
+    return bytes;
+}
+
+int sc_renderer_send_updates(sc_renderer *r, sc_error *err)
+{
+    if (!r->pending)
+        return SC_OK;
+    const sc_hulls *h = &r->hulls;
+    int n = r->scene->nsurfaces;
+    size_t sent = 0;
+    if (r->recount) {
+        sc_prepare_group_hulls(r);
+        size_scratch(r);
+    }
+    if (h->nvertices > r->vertex_capacity || h->nindices > r->index_capacity) {
+        /* More than the buffers hold: new ones, every vertex sent. */
+        if (upload_hulls(r, err) != SC_OK)
+            return SC_FAIL;
+        sent = r->hull_bytes_uploaded;
+        memset(r->stale, 0, (size_t)n);
+    }
+    for (int s = 0; s < n; s++) {
+        if (!r->stale[s])
+            continue;
+        int end = s;
+        while (end < n && r->stale[end])
+            r->stale[end++] = 0;
+        sent += send_surfaces(r, s, end);
+        s = end;
+    }
+    r->pending = r->recount = 0;
+    r->counting_afresh = 1;
+    r->bytes_uploaded += sent;
+    r->bytes_uploaded_total += sent;
+    return sc_gl_check(r->gl, "sending the updated surfaces' hulls", err);
 }
 
 /* One group per distinct program the surfaces are drawn with, in the order
@@ -384,6 +427,9 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
     sc_prepare_groups(r);
     sc_prepare_group_hulls(r);
     r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded + r->colour_bytes;
+    r->bytes_uploaded_total = r->bytes_uploaded;
+    r->stale = sc_alloc((size_t)(n ? n : 1), 1);
+    r->counting_afresh = 1;
     *out = r;
     return SC_OK;
 fail:
@@ -439,6 +485,7 @@ void sc_renderer_destroy(sc_renderer *r)
     free(r->inside);
     free(r->runs);
     free(r->group_seen);
+    free(r->stale);
     free(r->uvt);
     free(r->nearest);
     free(r->tile_far);
@@ -471,17 +518,19 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
         return SC_FAIL;
     }
     sc_patch_list_free(&old);
-    /* Vertices carry their record's number and centre: when other hulls or
-     * records moved, every vertex is written again. */
-    if (!hulls_moved && !records_moved) {
-        if (upload_surface_hulls(r, surface, err) != SC_OK)
-            return SC_FAIL;
-    } else {
-        if (upload_hulls(r, err) != SC_OK)
-            return SC_FAIL;
-        sc_prepare_group_hulls(r);
-    }
-    r->bytes_uploaded = r->data.bytes_uploaded + r->hull_bytes_uploaded;
+    if (r->counting_afresh)
+        r->bytes_uploaded = 0;
+    r->counting_afresh = 0;
+    r->bytes_uploaded += r->data.bytes_uploaded;
+    r->bytes_uploaded_total += r->data.bytes_uploaded;
+    /* Vertices carry their record's number and centre: when records moved,
+     * every vertex is stale; when this surface's hull counts changed, the
+     * vertices after its own moved. They are sent with the next frame. */
+    int n = r->scene->nsurfaces;
+    int from = records_moved ? 0 : surface, to = records_moved || hulls_moved ? n : surface + 1;
+    memset(r->stale + from, 1, (size_t)(to - from));
+    r->recount |= hulls_moved;
+    r->pending = 1;
     return SC_OK;
 }
 
@@ -494,6 +543,8 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->triangles = r->hulls.nindices / 3;
     stats->gpu_bytes = r->data.bytes + r->hull_bytes + r->colour_bytes;
     stats->bytes_uploaded = r->bytes_uploaded;
+    stats->bytes_uploaded_total = r->bytes_uploaded_total;
+    stats->qhull_hulls = r->hulls.qhull_pieces;
     stats->compile_ms = r->compile_ms;
     stats->draw_calls = r->draw_calls;
     stats->program_switches = r->program_switches;

@@ -411,6 +411,8 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
                     const float vp[16], float footprint, int manual, sc_error *err)
 {
     const sc_gl *gl = r->gl;
+    if (sc_renderer_send_updates(r, err) != SC_OK)
+        return SC_FAIL;
     float eye[3], eye_low[3], raster_eye[3];
     for (int c = 0; c < 3; c++) {
         eye[c] = (float)eye_world[c];

@@ -74,9 +74,11 @@ typedef struct sc_render_stats {
     int hulls;
     int triangles;
     size_t gpu_bytes;       /* patch data, hull vertices and indices, colours */
-    size_t bytes_uploaded;  /* by creation or the last surface update: patch
-                               data, hull vertices (and colours at creation;
-                               the index buffer is written every frame) */
+    size_t bytes_uploaded;  /* by creation, or for the surface updates up to
+                               the last send (sc_renderer_send_updates, or
+                               a frame) since the one before: patch data,
+                               hull vertices (and colours at creation; the
+                               index buffer is written every frame) */
     double compile_ms;      /* generating, validating, compiling and linking */
     /* Of the last frame: */
     int draw_calls;
@@ -95,6 +97,8 @@ typedef struct sc_render_stats {
     double intersect_query_ms; /* the same draws by a GL_TIME_ELAPSED query
                                (-1 as above; on llvmpipe it covers the
                                binning of the draws, not their raster) */
+    size_t bytes_uploaded_total; /* since creation, creation included */
+    long long qhull_hulls;  /* hulls qhull made (sc_hulls.qhull_pieces) */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;
@@ -128,12 +132,19 @@ int sc_renderer_read_nearest(sc_renderer *r, float *t, sc_error *err);
 
 /* After surface s of the scene changed shape (same degrees, counts and
  * key): rebuilds its hulls alone, with the hull tolerance the renderer was
- * made with, and rewrites its patch data and hull vertices in their ranges
- * of the GPU buffers; when its data or hull counts changed size, the
- * buffers are uploaded whole. A surface whose key changed is refused,
- * changing nothing; after any other failure the renderer may draw the
- * surface half changed and should be destroyed. */
+ * made with, and rewrites its patch data in its ranges of the GPU buffers
+ * (all of it when its size changed). Its hull vertices are sent with the
+ * next frame, or by sc_renderer_send_updates: each surface updated since
+ * the last send in its range, and, where a surface's hull counts changed,
+ * every surface after it (the whole buffer when it outgrew it). A surface
+ * whose key changed is refused, changing nothing; after any other failure
+ * the renderer may draw the surface half changed and should be
+ * destroyed. */
 int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err);
+/* Sends the hull vertices the updates since the last send left (every
+ * frame does it first); stats.bytes_uploaded then counts what those
+ * updates sent in all. */
+int sc_renderer_send_updates(sc_renderer *r, sc_error *err);
 
 void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats);
 /* The scene the renderer draws: a packed renderer's stand-in (gl_pack.h),

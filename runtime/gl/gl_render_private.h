@@ -121,7 +121,18 @@ struct sc_renderer {
     size_t hull_bytes, colour_bytes;
     size_t hull_bytes_uploaded;  /* vertices, by the last upload_hulls or
                                     upload_surface_hulls */
-    size_t bytes_uploaded;   /* by creation or the last surface update */
+    size_t bytes_uploaded;   /* by creation, or for the surface updates
+                                since the frame before the last: patch
+                                data at once, hull vertices with the frame */
+    size_t bytes_uploaded_total; /* since creation */
+    /* Surface updates send their hull vertices with the next frame
+     * (sc_renderer_send_updates), so that updating every surface sends each
+     * vertex once, however many surfaces' hulls changed number. */
+    unsigned char *stale;    /* per surface: its GPU vertices are old */
+    int pending;             /* a surface was updated since the last frame */
+    int recount;             /* and hull counts changed: groups, scratch */
+    int counting_afresh;     /* the next update starts bytes_uploaded at 0 */
+    int vertex_capacity, index_capacity; /* of the hull buffers */
     sc_gl_target target;
     /* sc_nearest_t: the distance channel of the uvt attachment as the
      * batches before the current one left it (R32F, the target's size). */
@@ -179,6 +190,7 @@ void sc_prepare_fill_vertices(const sc_renderer *r, int first, int count, gpu_ve
 /* New vertex (verts, r->hulls.nvertices of them) and index buffers, and
  * the frame's scratch sized for r->hulls. */
 int sc_prepare_upload_hull_buffers(sc_renderer *r, const gpu_vertex *verts, sc_error *err);
+
 void sc_prepare_vertex_array(sc_renderer *r);
 int sc_prepare_upload_colours(sc_renderer *r, sc_error *err);
 /* One group per distinct program of r->surface_program; each hull's. */

@@ -215,7 +215,10 @@ typedef struct sc_surface_desc {
 
 /* Replaces a surface's control points and updates every renderer drawing
  * the scene: each rebuilds that surface's hulls (with the hull tolerance
- * it was made with) and rewrites its patch data and hull vertices alone.
+ * it was made with; without qhull where the old triangles or a small hull
+ * of its own do) and rewrites its patch data alone; the hull vertices of
+ * all the surfaces updated since the last frame go with the next frame
+ * (or sc_query_renderer_info), each once.
  * Refused, changing nothing, when renderers draw the scene and the new
  * weights would make the surface rational or polynomial (a new variant
  * key: make new renderers). The CPU reference and keys queried afterwards
@@ -535,9 +538,13 @@ typedef struct sc_renderer_info {
     int programs;              /* distinct keys */
     int hulls, triangles;
     size_t gpu_bytes;          /* patch data, hulls, colours */
-    size_t uploaded_bytes;     /* sent to the GPU by sc_make_renderer or by
-                                  the last sc_update_surface: patch data and
-                                  hull vertices (and colours when made) */
+    size_t uploaded_bytes;     /* sent to the GPU by sc_make_renderer, or for
+                                  the sc_update_surface calls since the
+                                  frame (or this query) before the last:
+                                  patch data, sent by each call, and hull
+                                  vertices, sent once for all of them by
+                                  the next frame or by this query (and
+                                  colours when made) */
     double compile_ms;         /* generating, validating, compiling, linking */
     /* Of the last frame: */
     int draw_calls;
@@ -558,6 +565,16 @@ typedef struct sc_renderer_info {
      * query around them (on llvmpipe the query covers the binning of the
      * draws, not their rasterization, so it reads low). */
     double intersect_ms, intersect_query_ms;
+    size_t uploaded_total_bytes; /* sent to the GPU since sc_make_renderer,
+                                  making included: the difference over a
+                                  frame is what following the frame's
+                                  sc_update_surface calls cost */
+    long long qhull_hulls;     /* sub-patches whose hull came from qhull:
+                                  every one sc_make_renderer made, and
+                                  those of the sc_update_surface calls
+                                  since that neither kept their triangles
+                                  nor got a small incremental hull (flat
+                                  pieces) */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);

@@ -2,8 +2,16 @@
  * from the world-space Bézier patches of each surface
  * (sc_surface_world_patches), the same ones the renderer packs into GPU
  * records; a Bézier patch is split further by de Casteljau (bezier.h),
- * which is knot insertion to full multiplicity. Hulls come from libqhull's reentrant API
- * with triangulated output ("Qt"). */
+ * which is knot insertion to full multiplicity. A build's hulls come from
+ * libqhull's reentrant API with triangulated output ("Qt"). A surface
+ * update first keeps a piece's old triangles where they still bound its
+ * moved control points, then tries the incremental hull of small_hull.h,
+ * and leaves to qhull only the sets that refuses (flat or nearly flat
+ * pieces): qhull's set-up costs tens of microseconds a piece, the other
+ * two a few. Builds keep qhull, so that a renderer made from a scene draws
+ * exactly what it drew before: the small hull is the same convex body,
+ * but triangulates coplanar faces its own way, and the "view" and "cp"
+ * starts interpolate over the triangles. */
 #include "hulls.h"
 
 #include <libqhull_r/qhull_ra.h>
@@ -14,6 +22,7 @@
 
 #include "bezier.h"
 #include "nurbs.h"
+#include "small_hull.h"
 
 enum { DEFAULT_DIVISIONS = 2, DEFAULT_MAX_DEPTH = 8 };
 
@@ -29,12 +38,17 @@ typedef struct piece {
 typedef struct builder {
     sc_hulls *out;
     int cap_sub, cap_vert, cap_idx;
-    FILE *qhull_log;             /* qhull's messages, kept out of stderr */
+    FILE *qhull_log;             /* qhull's messages, kept out of stderr;
+                                    opened when qhull first runs */
     const sc_surface *surface;
     int surface_index, patch_index;
     const sc_bezier_patch *patch;
     double tolerance;            /* absolute, world units */
     int max_depth;
+    /* An update: the surface's hulls before it (prev's sub-patches
+     * [prev_next, prev_end)), whose triangles its pieces may keep. */
+    const sc_hulls *prev;
+    int prev_next, prev_end;
 } builder;
 
 /* ---- Bézier pieces ---- */
@@ -78,27 +92,27 @@ static double dist3(const double a[3], const double b[3])
  * the lines along u from their chords, against those along v). */
 static double piece_flatness(const builder *b, const piece *p, int *split_dir)
 {
-    int du = p->deg_u, dv = p->deg_v;
-    double c00[3], c10[3], c01[3], c11[3];
-    piece_point(p, 0, 0, c00);
-    piece_point(p, du, 0, c10);
-    piece_point(p, 0, dv, c01);
-    piece_point(p, du, dv, c11);
+    int du = p->deg_u, dv = p->deg_v, row = du + 1;
+    /* The Euclidean points once (a surface update refines every piece of
+     * a surface again, so this runs for every piece of every frame). */
+    double *e = sc_alloc(piece_points(p) * 3, sizeof(double));
+    for (int j = 0; j <= dv; j++)
+        for (int i = 0; i <= du; i++)
+            piece_point(p, i, j, e + 3 * (j * row + i));
+#define E(i, j) (e + 3 * ((j) * row + (i)))
+    const double *c00 = E(0, 0), *c10 = E(du, 0), *c01 = E(0, dv), *c11 = E(du, dv);
     double bilinear = 0, along_u = 0, along_v = 0;
     for (int j = 0; j <= dv; j++)
         for (int i = 0; i <= du; i++) {
-            double s = (double)i / du, t = (double)j / dv, q[3], x[3];
-            piece_point(p, i, j, x);
+            double s = (double)i / du, t = (double)j / dv, q[3];
+            const double *x = E(i, j);
             for (int c = 0; c < 3; c++)
                 q[c] = (1 - t) * ((1 - s) * c00[c] + s * c10[c]) +
                        t * ((1 - s) * c01[c] + s * c11[c]);
             bilinear = fmax(bilinear, dist3(x, q));
             /* chords of the row j (along u) and of the column i (along v) */
-            double r0[3], r1[3], k0[3], k1[3], on_row[3], on_col[3];
-            piece_point(p, 0, j, r0);
-            piece_point(p, du, j, r1);
-            piece_point(p, i, 0, k0);
-            piece_point(p, i, dv, k1);
+            const double *r0 = E(0, j), *r1 = E(du, j), *k0 = E(i, 0), *k1 = E(i, dv);
+            double on_row[3], on_col[3];
             for (int c = 0; c < 3; c++) {
                 on_row[c] = (1 - s) * r0[c] + s * r1[c];
                 on_col[c] = (1 - t) * k0[c] + t * k1[c];
@@ -106,6 +120,8 @@ static double piece_flatness(const builder *b, const piece *p, int *split_dir)
             along_u = fmax(along_u, dist3(x, on_row));
             along_v = fmax(along_v, dist3(x, on_col));
         }
+#undef E
+    free(e);
     *split_dir = along_u >= along_v ? 0 : 1;
     return bilinear;
 }
@@ -195,6 +211,64 @@ static int qhull_triangles(builder *b, double *coords, int n, int **tris)
     return count;
 }
 
+/* The input points of a piece's hull, n control points relative to its
+ * middle: each once, or (copies 6) each pushed 1e-5 of the piece's size
+ * along each axis both ways, a thin slab around flat or collinear points,
+ * which have no 3D hull. */
+static double *input_points(const double *world, int n, int copies, double size)
+{
+    double *coords = sc_alloc((size_t)n * (size_t)copies * 3, sizeof(double));
+    double eps = 1e-5 * size;
+    for (int k = 0; k < n; k++)
+        for (int c = 0; c < copies; c++) {
+            double *q = coords + 3 * (copies * k + c);
+            memcpy(q, world + 3 * k, 3 * sizeof(double));
+            if (copies > 1)
+                q[c / 2] += c % 2 ? eps : -eps;
+        }
+    return coords;
+}
+
+/* In an update, the hull the piece had before: the next of the surface's
+ * old sub-patches from the same Bézier patch with the same rectangle (the
+ * refinement visits pieces in the same order each time, so a forward
+ * search from the last one found meets them in turn). */
+static const sc_subpatch *previous_piece(builder *b, const piece *p)
+{
+    for (int k = b->prev_next; b->prev && k < b->prev_end; k++) {
+        const sc_subpatch *s = &b->prev->subpatches[k];
+        if (s->patch > b->patch_index)
+            break;
+        if (s->patch == b->patch_index && s->copies > 0 &&
+            !memcmp(s->local, p->local, sizeof s->local)) {
+            b->prev_next = k + 1;
+            return s;
+        }
+    }
+    return NULL;
+}
+
+/* The triangles of the old hull `before`, in the numbers of its input
+ * points, when they still bound the n moved ones (coords):
+ * sc_small_hull_bounds. Returns their count, or -1. */
+static int kept_triangles(const sc_hulls *prev, const sc_subpatch *before, const double *coords,
+                          int n, double size, int **tris)
+{
+    int ntris = before->index_count / 3;
+    int *t = sc_alloc((size_t)(3 * ntris > 0 ? 3 * ntris : 1), sizeof(int));
+    int ok = ntris > 0;
+    for (int i = 0; i < 3 * ntris && ok; i++) {
+        t[i] = prev->vertices[prev->indices[before->first_index + i]].source;
+        ok = t[i] >= 0 && t[i] < n;
+    }
+    if (!ok || !sc_small_hull_bounds(coords, n, t, ntris, size)) {
+        free(t);
+        return -1;
+    }
+    *tris = t;
+    return ntris;
+}
+
 /* The hull of one piece, appended as a sub-patch. */
 static int emit_hull(builder *b, const piece *p, sc_error *err)
 {
@@ -224,24 +298,37 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     for (int k = 0; k < np; k++)
         for (int c = 0; c < 3; c++)
             world[3 * k + c] -= mid[c];
-    int *tris = NULL;
-    int copies = 1;
-    double *coords = sc_alloc((size_t)np * 3, sizeof(double));
-    memcpy(coords, world, (size_t)np * 3 * sizeof(double));
-    int ntris = np >= 4 ? qhull_triangles(b, coords, np, &tris) : -1;
+    int *tris = NULL, ntris = -1, copies = 1;
+    double *coords = NULL;
+    const sc_subpatch *before = previous_piece(b, p);
+    if (before) {
+        copies = before->copies;
+        coords = input_points(world, np, copies, size);
+        ntris = kept_triangles(b->prev, before, coords, np * copies, size, &tris);
+        b->out->kept_pieces += ntris >= 0;
+    }
+    if (ntris < 0) {
+        free(coords);
+        copies = 1;
+        coords = input_points(world, np, 1, size);
+        if (b->prev && np >= 4)
+            ntris = sc_small_hull(coords, np, size, &tris);
+    }
+    if (ntris < 0 && !b->qhull_log && !(b->qhull_log = fopen("/dev/null", "w"))) {
+        free(world);
+        free(coords);
+        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
+    }
+    if (ntris < 0) {
+        b->out->qhull_pieces++;
+        ntris = np >= 4 ? qhull_triangles(b, coords, np, &tris) : -1;
+    }
     if (ntris < 0) {
         /* Flat or collinear control points (a planar patch) have no 3D hull:
-         * bound them by a thin slab, every point pushed a little along each
-         * axis both ways. */
+         * bound them by a thin slab. */
         copies = 6;
-        double eps = 1e-5 * size;
-        coords = sc_realloc(coords, (size_t)np * 6 * 3, sizeof(double));
-        for (int k = 0; k < np; k++)
-            for (int c = 0; c < 6; c++) {
-                double *q = coords + 3 * (6 * k + c);
-                memcpy(q, world + 3 * k, 3 * sizeof(double));
-                q[c / 2] += c % 2 ? eps : -eps;
-            }
+        free(coords);
+        coords = input_points(world, np, 6, size);
         ntris = qhull_triangles(b, coords, np * 6, &tris);
     }
     free(world);
@@ -266,6 +353,7 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
     s->domain[3] = bp->v0 + (bp->v1 - bp->v0) * p->local[3];
     s->first_vertex = h->nvertices;
     s->first_index = h->nindices;
+    s->copies = copies;
     for (int c = 0; c < 3; c++) {
         s->lo[c] = INFINITY;
         s->hi[c] = -INFINITY;
@@ -281,6 +369,7 @@ static int emit_hull(builder *b, const piece *p, sc_error *err)
             int cp_index = k / copies;
             int i = cp_index % (p->deg_u + 1), j = cp_index / (p->deg_u + 1);
             sc_hull_vertex *v = &h->vertices[h->nvertices];
+            v->source = k;
             for (int c = 0; c < 3; c++)
                 v->pos[c] = coords[3 * k + c] + mid[c];
             v->uv[0] = p->local[0] + (p->local[1] - p->local[0]) * i / p->deg_u;
@@ -364,13 +453,15 @@ static int uniform(builder *b, const piece *whole, int n, sc_error *err)
 }
 
 /* A builder appending to out with the options of out->desc and out->tolerance. */
-static int builder_open(builder *b, sc_hulls *out, sc_error *err)
+static void builder_open(builder *b, sc_hulls *out)
 {
     *b = (builder){.out = out, .tolerance = out->tolerance, .max_depth = out->desc.max_depth};
-    b->qhull_log = fopen("/dev/null", "w");
-    if (!b->qhull_log)
-        return sc_fail(err, NULL, 0, "cannot open /dev/null for qhull's messages");
-    return SC_OK;
+}
+
+static void builder_close(builder *b)
+{
+    if (b->qhull_log)
+        fclose(b->qhull_log);
 }
 
 /* Appends the hulls of surface si, built from its world-space patches,
@@ -433,15 +524,14 @@ int sc_hulls_build_from(const sc_scene *scene, const sc_patch_list *patches,
         hulls->desc.surface_tolerance = NULL; /* the caller's array need not outlive us */
     }
     builder b;
-    if (builder_open(&b, hulls, err) != SC_OK)
-        return SC_FAIL;
+    builder_open(&b, hulls);
     hulls->nsurfaces = scene->nsurfaces;
     hulls->surfaces = sc_alloc((size_t)(scene->nsurfaces ? scene->nsurfaces : 1),
                                sizeof *hulls->surfaces);
     int status = SC_OK;
     for (int si = 0; si < scene->nsurfaces && status == SC_OK; si++)
         status = build_surface(&b, scene, si, &patches[si], &hulls->surfaces[si], err);
-    fclose(b.qhull_log);
+    builder_close(&b);
     if (status != SC_OK)
         sc_hulls_free(hulls);
     return status;
@@ -486,11 +576,13 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
                     .tolerance = hulls->surface_tolerance ? hulls->surface_tolerance[surface]
                                                           : hulls->tolerance};
     builder b;
-    if (builder_open(&b, &one, err) != SC_OK)
-        return SC_FAIL;
+    builder_open(&b, &one);
+    b.prev = hulls;
+    b.prev_next = hulls->surfaces[surface].first_subpatch;
+    b.prev_end = b.prev_next + hulls->surfaces[surface].subpatch_count;
     sc_hull_range fresh;
     int status = build_surface(&b, scene, surface, patches, &fresh, err);
-    fclose(b.qhull_log);
+    builder_close(&b);
     if (status != SC_OK) {
         sc_hulls_free(&one);
         return SC_FAIL;
@@ -531,6 +623,8 @@ int sc_hulls_update_surface_from(sc_hulls *hulls, const sc_scene *scene, int sur
     for (int i = 0; i < one.nindices; i++)
         hulls->indices[old->first_index + i] = one.indices[i] + (uint32_t)old->first_vertex;
     hulls->npatches += one.npatches - old->patch_count;
+    hulls->qhull_pieces += one.qhull_pieces;
+    hulls->kept_pieces += one.kept_pieces;
     old->subpatch_count = one.count;
     old->vertex_count = one.nvertices;
     old->index_count = one.nindices;

@@ -2,7 +2,8 @@
  * every surface is cut into Bézier patches, every patch into sub-patches —
  * uniformly (n × n) or adaptively (split until the control mesh is flat
  * within a tolerance, or a maximum depth) — and each sub-patch is bounded by
- * the convex hull of its control points (libqhull). Rasterising a hull
+ * the convex hull of its control points (libqhull; small_hull.h or the
+ * triangles it had when a surface update rebuilds it). Rasterising a hull
  * starts one ray per covered pixel; the hull carries the start values of
  * the intersection: the centre of its parameter rectangle ("mid") and, per
  * vertex, the parameters of the control point the vertex is ("cp").
@@ -40,6 +41,8 @@ typedef struct sc_hull_vertex {
     double pos[3];       /* world space */
     double uv[2];        /* the control point's parameters, local to its
                             Bézier patch ([0, 1]²): the "cp" start */
+    int source;          /* the hull builder's input point it is: control
+                            point number × the sub-patch's copies + copy */
 } sc_hull_vertex;
 
 /* One sub-patch and its hull. */
@@ -53,6 +56,9 @@ typedef struct sc_subpatch {
     int first_vertex, vertex_count;
     int first_index, index_count;  /* 3 per triangle */
     double lo[3], hi[3]; /* bounding box of the hull */
+    int copies;          /* input points per control point: 1, or 6 for a
+                            slab (flat pieces); 0 for hulls not built from
+                            control points here (prisms, packs) */
 } sc_subpatch;
 
 /* Where one surface's hulls sit: its sub-patches, and the vertices and
@@ -81,6 +87,12 @@ typedef struct sc_hulls {
                             fixed when the hulls were built */
     double *surface_tolerance; /* the same per surface, when the desc gave
                             them; NULL otherwise */
+    long qhull_pieces;   /* sub-patches whose hull qhull made: every one of
+                            the build, and those of the surface updates
+                            since that neither kept their triangles nor got
+                            a small hull (flat pieces) */
+    long kept_pieces;    /* sub-patches of the updates that kept their
+                            triangles */
 } sc_hulls;
 
 /* Builds the hulls of every surface of the scene. Collapsed sub-patches (all
@@ -97,8 +109,13 @@ void sc_hulls_free(sc_hulls *hulls);
 
 /* After surface s of the scene changed shape: rebuilds its hulls alone, as
  * sc_hulls_build would with the tolerance the hulls were built with (the
- * same hulls, unless the change moved the scene's bounding box, which a
- * full build would take its tolerance from). *moved is 0 when the
+ * same sub-patches, unless the change moved the scene's bounding box,
+ * which a full build would take its tolerance from). A sub-patch that was
+ * there before (same Bézier patch, same rectangle) keeps its triangles
+ * when they still bound its moved control points (sc_small_hull_bounds:
+ * a moved but not reshaped patch keeps exactly its hulls); the others get
+ * small_hull.h's hull, qhull's where that refuses — the same convex body
+ * as a build's, its coplanar faces possibly triangulated otherwise. *moved is 0 when the
  * surface's sub-patch, vertex and index counts stayed, so that only its
  * ranges changed; 1 when the hulls of the surfaces after it moved. On
  * failure the hulls are left as they were. */
