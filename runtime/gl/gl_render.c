@@ -98,13 +98,16 @@ static void order_hulls(sc_renderer *r, int n)
     sort_item *items = r->items;
     qsort(items, (size_t)n, sizeof *items, by_order);
     /* Manhattan sets (major: the set) are in order already: one program. */
-    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK || r->manhattan)
+    int peel = r->desc.ert == SC_TERMINATION_PEEL;
+    if ((r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK && !peel) || r->manhattan)
         return;
     /* By program: the programs in the order of their nearest hull, front to
      * back within one. Hybrid: the same within each bucket of batch_hulls
      * hulls taken front to back. In depth order, a group's first hull in a
      * range is its nearest there. */
-    int bucket = r->desc.order == SC_HULL_ORDER_HYBRID ? r->desc.batch_hulls : (n ? n : 1);
+    /* Depth peeling draws every hull in each pass, in any order: by
+     * program, one draw call each. */
+    int bucket = r->desc.order == SC_HULL_ORDER_HYBRID && !peel ? r->desc.batch_hulls : (n ? n : 1);
     for (int start = 0; start < n; start += bucket) {
         int end = start + bucket < n ? start + bucket : n;
         for (int g = 0; g < r->ngroups; g++)
@@ -134,7 +137,7 @@ static int inside_program(sc_renderer *r, int g, sc_error *err)
 
 /* Appends hull k to the frame's index list and to the last draw call when
  * it continues it, else to a new one. */
-static void append_hull(sc_renderer *r, int *nruns, int *nidx, int k, int inside)
+void sc_render_append_hull(sc_renderer *r, int *nruns, int *nidx, int k, int inside)
 {
     const sc_subpatch *s = &r->hulls.subpatches[k];
     int g = r->hull_group[k];
@@ -157,6 +160,12 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
     if (nidx > first)
         gl->NamedBufferSubData(r->index_buffer, (GLintptr)first * 4,
                                (GLsizeiptr)(nidx - first) * 4, r->frame_indices + first);
+    sc_render_draw_runs(r, nruns, current);
+}
+
+void sc_render_draw_runs(sc_renderer *r, int nruns, GLuint *current)
+{
+    const sc_gl *gl = r->gl;
     for (int i = 0; i < nruns; i++) {
         const draw_run *run = &r->runs[i];
         const group *gr = &r->groups[run->group];
@@ -167,7 +176,7 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
             *current = program;
             r->program_switches++;
         }
-        gl->CullFace(run->inside ? GL_FRONT : GL_BACK);
+        gl->CullFace(run->inside == 1 ? GL_FRONT : GL_BACK);
         gl->DrawElements(GL_TRIANGLES, run->count, GL_UNSIGNED_INT,
                          (const void *)((size_t)run->first * sizeof(uint32_t)));
         r->draw_calls++;
@@ -378,7 +387,7 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear, uncleared);
     r->time_hulls = r->desc.time_intersection;
-    int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
+    int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, 1, err);
     r->time_hulls = 0;
     if (status == SC_OK && r->desc.deferred && r->scene->terrain &&
         r->desc.view == SC_SHOW_SHADE)
@@ -387,6 +396,11 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     gl->Finish();
     if (status != SC_OK)
         return SC_FAIL;
+    sc_peel_finish(r);
+    if (r->peel_pending)
+        sc_log(SC_LOG_WARN, "depth peeling stopped after %d layers with %lld hull fragments "
+               "still in front of their pixels' hits: those pixels keep the best hit found",
+               SC_PEEL_MAX_LAYERS, r->peel_pending);
     return sc_gl_check(gl, "drawing the hulls", err);
 }
 
@@ -408,9 +422,10 @@ void sc_render_eye_projection(const float view[16], const float proj[16], float 
 }
 
 int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[3],
-                    const float vp[16], float footprint, int manual, sc_error *err)
+                    const float vp[16], float footprint, int own_target, sc_error *err)
 {
     const sc_gl *gl = r->gl;
+    int manual = own_target && manual_ert(r->desc.ert);
     float eye[3], eye_low[3], raster_eye[3];
     for (int c = 0; c < 3; c++) {
         eye[c] = (float)eye_world[c];
@@ -443,6 +458,17 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     for (int i = 0; i < ninside; i++)
         if (r->desc.ert != SC_TERMINATION_NONE &&
             inside_program(r, r->hull_group[r->inside[i]], err) != SC_OK)
+            return SC_FAIL;
+    /* Depth peeling needs the renderer's own target and no hull holding the
+     * eye (whose entry is the eye itself, behind every other hull's); else
+     * the frame falls back to drawing every hull with the `inside`
+     * programs (ert0): no early termination, the same image. */
+    int peeling = r->desc.ert == SC_TERMINATION_PEEL;
+    int peel = peeling && own_target && !ninside;
+    r->peel_fallback = peeling && !peel;
+    r->peel_issued = 0;
+    for (int i = 0; r->peel_fallback && i < n; i++)
+        if (inside_program(r, r->hull_group[r->items[i].hull], err) != SC_OK)
             return SC_FAIL;
 
     gl->Enable(GL_DEPTH_TEST);
@@ -490,11 +516,20 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
         gl->BeginQuery(GL_TIME_ELAPSED, r->time_query);
     }
     GLuint current = 0;
+    if (peel) {
+        int status = sc_peel_draw(r, n, vp, raster_eye, &current, err);
+        if (r->timed) {
+            gl->EndQuery(GL_TIME_ELAPSED);
+            gl->Finish();
+            r->intersect_ms = 1e3 * (sc_now() - t0);
+        }
+        return status;
+    }
     int nruns = 0, nidx = 0;
     for (int g = 0; g < r->ngroups; g++)
         for (int i = 0; i < ninside; i++)
             if (r->hull_group[r->inside[i]] == g)
-                append_hull(r, &nruns, &nidx, r->inside[i], 1);
+                sc_render_append_hull(r, &nruns, &nidx, r->inside[i], 1);
     submit_runs(r, nruns, 0, nidx, &current);
     if (manual && ninside && n)
         refresh_nearest(r);
@@ -514,7 +549,7 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
                 culled++;
                 continue;
             }
-            append_hull(r, &nruns, &nidx, k, 0);
+            sc_render_append_hull(r, &nruns, &nidx, k, r->peel_fallback ? 2 : 0);
             drawn++;
         }
         r->culled += culled;

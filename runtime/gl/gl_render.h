@@ -95,6 +95,9 @@ typedef struct sc_render_stats {
     double intersect_query_ms; /* the same draws by a GL_TIME_ELAPSED query
                                (-1 as above; on llvmpipe it covers the
                                binning of the draws, not their raster) */
+    int peel_layers;        /* depth peeling: the layers that found hull
+                               entries in front of a pixel's best hit (0
+                               when the frame did not peel) */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;

@@ -558,6 +558,10 @@ typedef struct sc_renderer_info {
      * query around them (on llvmpipe the query covers the binning of the
      * draws, not their rasterization, so it reads low). */
     double intersect_ms, intersect_query_ms;
+    int peel_layers;           /* of the last frame, depth peeling
+                                  (SC_TERMINATION_PEEL): the layers that
+                                  found hull entries in front of a pixel's
+                                  best hit; 0 when it did not peel */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);
