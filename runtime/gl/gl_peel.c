@@ -23,23 +23,32 @@
  * declared invariant (templates/hull.vert and the pre-pass's below), so the
  * depths meet bit for bit.
  *
- * Most pixels are done after the first layer or two, but drawing every hull
- * costs a pass its rasterisation whatever the tests reject (on llvmpipe,
- * 8 ms a pass for the teapot's 35,536 triangles at 256 x 256). So from the
- * second layer on the hulls are culled on the GPU: the pre-pass marks the
- * tiles of PEEL_TILE x PEEL_TILE pixels where anything passed (an r32ui
- * image), and a compute program copies the indices of the hulls whose
- * screen rectangle (from their bounding box, on the CPU) touches such a
- * tile into a compact index list, one region and one indirect draw command
- * per draw call; the layer's intersection pass and the next pre-pass draw
- * that list. A pixel left pending by layer k had a candidate in layer k, so
- * no hull it needs is culled.
+ * Every pass costs the rasterisation of every hull it draws, however few
+ * fragments pass its tests (on llvmpipe a layer of the teapot's 35,536
+ * triangles that runs almost no intersection costs half of the first
+ * layer), so the hulls are culled on the GPU, by a compute program that
+ * copies the indices of the hulls it keeps into a compact list, one region
+ * and one indirect draw command per program:
  *
- * Up to SC_PEEL_MAX_LAYERS layers are issued, each
- * conditional on the query of the one before, so nothing is read back to
- * the CPU between them; one more pre-pass counts the fragments still
- * pending after the last layer (sc_peel_finish reads it when the frame has
- * been waited for). A resolve pass then writes gl_FragDepth from the best
+ *  - the hulls are peeled in batches, front to back by their boxes'
+ *    distance (batch_hulls, doubling: 32, 64, 128, ...; the best hits carry
+ *    over from batch to batch, so a hull of a later batch is intersected
+ *    where its entry lies in front of the hit so far); after each batch a
+ *    compute program takes the farthest best hit of every tile of
+ *    PEEL_TILE x PEEL_TILE pixels, and a hull of a later batch whose box's
+ *    nearest corner lies behind it in every tile its screen rectangle
+ *    touches is not drawn at all (seed 000's culling, on the GPU);
+ *  - within a batch, from the second layer on, the pre-pass marks the
+ *    tiles where anything passed (an r32ui image), and only the hulls whose
+ *    screen rectangle touches such a tile are drawn by the layer's
+ *    intersection and the next pre-pass (a pixel pending after layer k had
+ *    a candidate in layer k, so no hull it needs is left out).
+ *
+ * Up to SC_PEEL_MAX_LAYERS layers are issued a batch, each conditional on
+ * the query of the one before, so nothing is read back to the CPU between
+ * them; one more pre-pass counts the fragments still pending after the
+ * last layer (sc_peel_finish reads the queries once the frame has been
+ * waited for). A resolve pass then writes gl_FragDepth from the best
  * hits, for whatever composes with the frame. */
 #include "gl_render_private.h"
 
@@ -50,18 +59,19 @@
 #include "peer_private.h"
 #include "shader_contract.h"
 
-/* Texture units past the patch data's (shader_contract.h), the image unit
+/* Texture units past the patch data's (shader_contract.h), image units
  * past the best hits', and the culling's storage buffers past the
  * counters'. */
-enum { UNIT_PREVIOUS_ENTRY = 5, UNIT_BEST = 6, IMAGE_PENDING = 1 };
+enum { UNIT_PREVIOUS_ENTRY = 5, UNIT_BEST = 6, IMAGE_PENDING = 1, IMAGE_TILE_FAR = 2 };
 enum { BUFFER_SLOTS = 1, BUFFER_SOURCE = 2, BUFFER_LIST = 3, BUFFER_COMMANDS = 4 };
-enum { PEEL_TILE = 16 };
+enum { PEEL_TILE = 16, CULL_ALL = 0, CULL_FAR = 1, CULL_PENDING = 2 };
 
 /* One hull of the frame for the culling program (std430). */
 typedef struct peel_slot {
     int32_t rect[4];          /* tiles x0, y0, x1, y1 (inclusive) */
     uint32_t first, count;    /* its indices in the frame's index list */
-    uint32_t command, pad;    /* its draw call */
+    uint32_t command;         /* its program's draw command */
+    float near;               /* window depth of its box's nearest corner */
 } peel_slot;
 
 /* glDrawElementsIndirect's command. */
@@ -113,56 +123,57 @@ static const char *prepass_fragment_source =
     "    imageStore(sc_pending, px / 16, uvec4(1u));\n"
     "}\n";
 
-/* The culling: one invocation per hull of the frame. */
+/* The culling: one invocation per hull of the batch. sc_cull: 0 keeps
+ * every hull, 1 those not behind the farthest best hit of every tile they
+ * touch, 2 those touching a tile with work. */
 static const char *cull_source =
     "#version 450 core\n"
     "layout(local_size_x = 64) in;\n"
-    "struct slot { ivec4 rect; uint first, count, command, pad; };\n"
+    "struct slot { ivec4 rect; uint first, count, command; float near; };\n"
     "struct command { uint count, instances, first, base_vertex, base_instance; };\n"
     "layout(std430, binding = 1) readonly buffer sc_slots { slot slots[]; };\n"
     "layout(std430, binding = 2) readonly buffer sc_source { uint source[]; };\n"
     "layout(std430, binding = 3) writeonly buffer sc_list { uint list[]; };\n"
     "layout(std430, binding = 4) buffer sc_commands { command commands[]; };\n"
     "layout(r32ui, binding = 1) uniform readonly uimage2D sc_pending;\n"
-    "layout(location = 0) uniform int sc_slot_count;\n"
+    "layout(r32f, binding = 2) uniform readonly image2D sc_tile_far;\n"
+    "layout(location = 0) uniform ivec3 sc_batch;   // first slot, slots, mode\n"
     "void main()\n"
     "{\n"
     "    int i = int(gl_GlobalInvocationID.x);\n"
-    "    if (i >= sc_slot_count)\n"
+    "    if (i >= sc_batch.y)\n"
     "        return;\n"
-    "    ivec4 r = slots[i].rect;\n"
-    "    bool pending = false;\n"
-    "    for (int y = r.y; y <= r.w && !pending; y++)\n"
-    "        for (int x = r.x; x <= r.z && !pending; x++)\n"
-    "            pending = imageLoad(sc_pending, ivec2(x, y)).r != 0u;\n"
-    "    if (!pending)\n"
+    "    slot s = slots[sc_batch.x + i];\n"
+    "    bool keep = sc_batch.z == 0;\n"
+    "    for (int y = s.rect.y; y <= s.rect.w && !keep; y++)\n"
+    "        for (int x = s.rect.x; x <= s.rect.z && !keep; x++)\n"
+    "            keep = sc_batch.z == 1 ? s.near <= imageLoad(sc_tile_far, ivec2(x, y)).r\n"
+    "                                   : imageLoad(sc_pending, ivec2(x, y)).r != 0u;\n"
+    "    if (!keep)\n"
     "        return;\n"
-    "    uint n = slots[i].count, c = slots[i].command, from = slots[i].first;\n"
-    "    uint to = commands[c].first + atomicAdd(commands[c].count, n);\n"
-    "    for (uint j = 0u; j < n; j++)\n"
-    "        list[to + j] = source[from + j];\n"
+    "    uint to = commands[s.command].first + atomicAdd(commands[s.command].count, s.count);\n"
+    "    for (uint j = 0u; j < s.count; j++)\n"
+    "        list[to + j] = source[s.first + j];\n"
     "}\n";
 
-static int link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err)
-{
-    GLuint shader = gl->CreateShader(GL_COMPUTE_SHADER);
-    gl->ShaderSource(shader, 1, &source, NULL);
-    gl->CompileShader(shader);
-    GLuint prog = gl->CreateProgram();
-    gl->AttachShader(prog, shader);
-    gl->LinkProgram(prog);
-    gl->DeleteShader(shader);
-    GLint ok = 0;
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
-        gl->DeleteProgram(prog);
-        return sc_fail(err, NULL, 0, "depth peeling: the culling program does not link: %s", log);
-    }
-    *program = prog;
-    return SC_OK;
-}
+/* The farthest best hit of each tile (1.0 where a pixel has none). */
+static const char *tile_far_source =
+    "#version 450 core\n"
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(binding = 6) uniform sampler2D sc_best;\n"
+    "layout(r32f, binding = 2) uniform writeonly image2D sc_tile_far;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 tile = ivec2(gl_GlobalInvocationID.xy), size = textureSize(sc_best, 0);\n"
+    "    if (any(greaterThanEqual(tile * 16, size)))\n"
+    "        return;\n"
+    "    ivec2 end = min(tile * 16 + 16, size);\n"
+    "    float far = 0.0;\n"
+    "    for (int y = tile.y * 16; y < end.y; y++)\n"
+    "        for (int x = tile.x * 16; x < end.x; x++)\n"
+    "            far = max(far, texelFetch(sc_best, ivec2(x, y), 0).r);\n"
+    "    imageStore(sc_tile_far, tile, vec4(far));\n"
+    "}\n";
 
 static const char *resolve_vertex_source =
     "#version 450 core\n"
@@ -184,11 +195,32 @@ static const char *resolve_fragment_source =
     "    gl_FragDepth = depth;\n"
     "}\n";
 
-static GLuint r32f_texture(const sc_gl *gl, int w, int h)
+static int link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err)
+{
+    GLuint shader = gl->CreateShader(GL_COMPUTE_SHADER);
+    gl->ShaderSource(shader, 1, &source, NULL);
+    gl->CompileShader(shader);
+    GLuint prog = gl->CreateProgram();
+    gl->AttachShader(prog, shader);
+    gl->LinkProgram(prog);
+    gl->DeleteShader(shader);
+    GLint ok = 0;
+    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
+        gl->DeleteProgram(prog);
+        return sc_fail(err, NULL, 0, "depth peeling: a compute program does not link: %s", log);
+    }
+    *program = prog;
+    return SC_OK;
+}
+
+static GLuint texture_2d(const sc_gl *gl, GLenum format, int w, int h)
 {
     GLuint tex;
     gl->CreateTextures(GL_TEXTURE_2D, 1, &tex);
-    gl->TextureStorage2D(tex, 1, GL_R32F, w, h);
+    gl->TextureStorage2D(tex, 1, format, w, h);
     gl->TextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return tex;
@@ -204,11 +236,12 @@ static void release_targets(sc_renderer *r)
             gl->DeleteTextures(1, &r->peel_entry[i]);
         r->peel_fb[i] = r->peel_entry[i] = 0;
     }
-    if (r->peel_best)
-        gl->DeleteTextures(1, &r->peel_best);
-    if (r->peel_pending_tiles)
-        gl->DeleteTextures(1, &r->peel_pending_tiles);
-    r->peel_best = r->peel_pending_tiles = 0;
+    GLuint *tex[3] = {&r->peel_best, &r->peel_pending_tiles, &r->peel_tile_far};
+    for (int i = 0; i < 3; i++) {
+        if (*tex[i])
+            gl->DeleteTextures(1, tex[i]);
+        *tex[i] = 0;
+    }
 }
 
 void sc_peel_destroy(sc_renderer *r)
@@ -216,21 +249,22 @@ void sc_peel_destroy(sc_renderer *r)
     const sc_gl *gl = r->gl;
     release_targets(r);
     if (r->peel_queries[0])
-        gl->DeleteQueries(SC_PEEL_MAX_LAYERS + 2, r->peel_queries);
-    if (r->peel_program)
-        gl->DeleteProgram(r->peel_program);
-    if (r->resolve_program)
-        gl->DeleteProgram(r->resolve_program);
+        gl->DeleteQueries(SC_PEEL_QUERIES, r->peel_queries);
+    GLuint *programs[4] = {&r->peel_program, &r->resolve_program, &r->cull_program,
+                           &r->tile_far_program};
+    for (int i = 0; i < 4; i++)
+        if (*programs[i])
+            gl->DeleteProgram(*programs[i]);
     if (r->peel_vao)
         gl->DeleteVertexArrays(1, &r->peel_vao);
-    if (r->cull_program)
-        gl->DeleteProgram(r->cull_program);
-    gl->DeleteBuffers(5, r->peel_buffers);
+    if (r->peel_buffers[0])
+        gl->DeleteBuffers(5, r->peel_buffers);
     free(r->peel_slots);
     free(r->peel_commands);
 }
 
-/* Programs, queries and the targets at the renderer's target size. */
+/* Programs, queries, the culling's buffers for the renderer's hulls and
+ * the targets at the renderer's target size. */
 static int peel_resources(sc_renderer *r, sc_error *err)
 {
     const sc_gl *gl = r->gl;
@@ -241,16 +275,16 @@ static int peel_resources(sc_renderer *r, sc_error *err)
         const char *resolve[4] = {resolve_vertex_source, NULL, NULL, resolve_fragment_source};
         if (sc_peer_link(gl, pre, &r->peel_program, err) != SC_OK ||
             sc_peer_link(gl, resolve, &r->resolve_program, err) != SC_OK ||
-            link_compute(gl, cull_source, &r->cull_program, err) != SC_OK)
+            link_compute(gl, cull_source, &r->cull_program, err) != SC_OK ||
+            link_compute(gl, tile_far_source, &r->tile_far_program, err) != SC_OK)
             return SC_FAIL;
-        gl->GenQueries(SC_PEEL_MAX_LAYERS + 2, r->peel_queries);
+        gl->GenQueries(SC_PEEL_QUERIES, r->peel_queries);
         gl->CreateVertexArrays(1, &r->peel_vao);
     }
-    /* The culling's buffers, for the renderer's hulls: the slots, the two
-     * compact lists and their commands (taking turns), sized for every
-     * hull and every draw call. */
+    /* The slots; two compact lists and their commands, taking turns. */
     size_t nindices = (size_t)(r->hulls.nindices ? r->hulls.nindices : 1);
     size_t nslots = (size_t)(r->hulls.count ? r->hulls.count : 1);
+    size_t ncommands = (size_t)(r->ngroups ? r->ngroups : 1);
     if (r->peel_capacity != nindices + nslots) {
         if (r->peel_buffers[0])
             gl->DeleteBuffers(5, r->peel_buffers);
@@ -260,11 +294,12 @@ static int peel_resources(sc_renderer *r, sc_error *err)
         for (int i = 0; i < 2; i++) {
             gl->NamedBufferData(r->peel_buffers[1 + i], (GLsizeiptr)(nindices * 4), NULL,
                                 GL_DYNAMIC_COPY);
-            gl->NamedBufferData(r->peel_buffers[3 + i], (GLsizeiptr)(nslots * sizeof(peel_command)),
-                                NULL, GL_DYNAMIC_COPY);
+            gl->NamedBufferData(r->peel_buffers[3 + i],
+                                (GLsizeiptr)(ncommands * sizeof(peel_command)), NULL,
+                                GL_DYNAMIC_COPY);
         }
         r->peel_slots = sc_realloc(r->peel_slots, nslots, sizeof(peel_slot));
-        r->peel_commands = sc_realloc(r->peel_commands, nslots, sizeof(peel_command));
+        r->peel_commands = sc_realloc(r->peel_commands, ncommands, sizeof(peel_command));
         r->peel_capacity = nindices + nslots;
     }
     const sc_gl_target *t = &r->target;
@@ -272,12 +307,12 @@ static int peel_resources(sc_renderer *r, sc_error *err)
         r->peel_depth == t->depth)
         return SC_OK;
     release_targets(r);
-    r->peel_best = r32f_texture(gl, t->width, t->height);
-    gl->CreateTextures(GL_TEXTURE_2D, 1, &r->peel_pending_tiles);
-    gl->TextureStorage2D(r->peel_pending_tiles, 1, GL_R32UI, (t->width + PEEL_TILE - 1) / PEEL_TILE,
-                         (t->height + PEEL_TILE - 1) / PEEL_TILE);
+    int tw = (t->width + PEEL_TILE - 1) / PEEL_TILE, th = (t->height + PEEL_TILE - 1) / PEEL_TILE;
+    r->peel_best = texture_2d(gl, GL_R32F, t->width, t->height);
+    r->peel_pending_tiles = texture_2d(gl, GL_R32UI, tw, th);
+    r->peel_tile_far = texture_2d(gl, GL_R32F, tw, th);
     for (int i = 0; i < 2; i++) {
-        r->peel_entry[i] = r32f_texture(gl, t->width, t->height);
+        r->peel_entry[i] = texture_2d(gl, GL_R32F, t->width, t->height);
         gl->CreateFramebuffers(1, &r->peel_fb[i]);
         gl->NamedFramebufferTexture(r->peel_fb[i], GL_COLOR_ATTACHMENT0, r->peel_entry[i], 0);
         gl->NamedFramebufferTexture(r->peel_fb[i], GL_DEPTH_ATTACHMENT, t->depth, 0);
@@ -293,14 +328,14 @@ static int peel_resources(sc_renderer *r, sc_error *err)
 }
 
 /* Hull k's screen rectangle in tiles (vp: the camera at the origin),
- * widened by a pixel; the whole screen when a corner lies at or behind
- * the eye. */
-static void hull_tiles(const sc_renderer *r, const float vp[16], int k, int32_t rect[4])
+ * widened by a pixel, and the window depth of its box's nearest corner;
+ * the whole screen and 0 when a corner lies at or behind the eye. */
+static void hull_tiles(const sc_renderer *r, const float vp[16], int k, peel_slot *slot)
 {
     const sc_subpatch *s = &r->hulls.subpatches[k];
     int w = r->target.width, h = r->target.height;
     int tw = (w + PEEL_TILE - 1) / PEEL_TILE, th = (h + PEEL_TILE - 1) / PEEL_TILE;
-    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY, near = INFINITY;
     for (int c = 0; c < 8; c++) {
         double d[3] = {(c & 1 ? s->hi[0] : s->lo[0]) - r->camera.eye[0],
                        (c & 2 ? s->hi[1] : s->lo[1]) - r->camera.eye[1],
@@ -309,165 +344,204 @@ static void hull_tiles(const sc_renderer *r, const float vp[16], int k, int32_t 
         for (int row = 0; row < 4; row++)
             clip[row] = vp[row] * d[0] + vp[4 + row] * d[1] + vp[8 + row] * d[2] + vp[12 + row];
         if (!(clip[3] > 1e-9)) {
-            rect[0] = rect[1] = 0;
-            rect[2] = tw - 1;
-            rect[3] = th - 1;
+            slot->rect[0] = slot->rect[1] = 0;
+            slot->rect[2] = tw - 1;
+            slot->rect[3] = th - 1;
+            slot->near = 0;
             return;
         }
         double x = (0.5 * clip[0] / clip[3] + 0.5) * w, y = (0.5 * clip[1] / clip[3] + 0.5) * h;
         x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+        near = fmin(near, 0.5 * clip[2] / clip[3] + 0.5);
     }
-    rect[0] = (int32_t)fmin(fmax(floor(x0 - 1), 0), w - 1) / PEEL_TILE;
-    rect[1] = (int32_t)fmin(fmax(floor(y0 - 1), 0), h - 1) / PEEL_TILE;
-    rect[2] = (int32_t)fmin(fmax(ceil(x1 + 1), 0), w - 1) / PEEL_TILE;
-    rect[3] = (int32_t)fmin(fmax(ceil(y1 + 1), 0), h - 1) / PEEL_TILE;
+    slot->rect[0] = (int32_t)fmin(fmax(floor(x0 - 1), 0), w - 1) / PEEL_TILE;
+    slot->rect[1] = (int32_t)fmin(fmax(floor(y0 - 1), 0), h - 1) / PEEL_TILE;
+    slot->rect[2] = (int32_t)fmin(fmax(ceil(x1 + 1), 0), w - 1) / PEEL_TILE;
+    slot->rect[3] = (int32_t)fmin(fmax(ceil(y1 + 1), 0), h - 1) / PEEL_TILE;
+    /* A margin for the float depths the programs compute. */
+    slot->near = (float)(near - 1e-6);
 }
 
-/* Draws the pre-pass (program: the pre-pass's, runs: NULL) or the
- * intersection (the runs' programs) from the frame's list (list 0) or a
- * compact list (1 + which). */
-static void draw_list(sc_renderer *r, int list, int nruns, int nidx, int prepass, GLuint *current)
+/* The hulls of slots [first, first + count) that `mode` keeps, into compact
+ * list `list` (0 or 1) and its commands. */
+static void cull(sc_renderer *r, int first, int count, int mode, int list, int ncommands,
+                 GLuint *current)
 {
     const sc_gl *gl = r->gl;
-    if (!list) {
-        if (prepass) {
-            if (nidx)
-                gl->DrawElements(GL_TRIANGLES, nidx, GL_UNSIGNED_INT, NULL);
-            r->draw_calls++;
-        } else {
-            sc_render_draw_runs(r, nruns, current);
-        }
-        return;
-    }
-    gl->VertexArrayElementBuffer(r->vertex_array, r->peel_buffers[list]);
-    gl->BindBuffer(GL_DRAW_INDIRECT_BUFFER, r->peel_buffers[2 + list]);
+    gl->NamedBufferSubData(r->peel_buffers[3 + list], 0,
+                           (GLsizeiptr)((size_t)ncommands * sizeof(peel_command)),
+                           r->peel_commands);
+    gl->MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_LIST, r->peel_buffers[1 + list]);
+    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_COMMANDS, r->peel_buffers[3 + list]);
+    gl->UseProgram(r->cull_program);
+    *current = r->cull_program;
+    gl->ProgramUniform3i(r->cull_program, 0, first, count, mode);
+    gl->DispatchCompute((GLuint)(count + 63) / 64, 1, 1);
+    gl->MemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
+}
+
+/* Draws compact list `list`: the pre-pass (every program's command with
+ * the pre-pass program) or the intersection (each with its program). */
+static void draw_list(sc_renderer *r, int list, int ncommands, int prepass, GLuint *current)
+{
+    const sc_gl *gl = r->gl;
+    gl->VertexArrayElementBuffer(r->vertex_array, r->peel_buffers[1 + list]);
+    gl->BindBuffer(GL_DRAW_INDIRECT_BUFFER, r->peel_buffers[3 + list]);
     if (prepass) {
-        gl->MultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, NULL, nruns, 0);
+        gl->MultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, NULL, ncommands, 0);
         r->draw_calls++;
     }
-    for (int i = 0; !prepass && i < nruns; i++) {
-        const draw_run *run = &r->runs[i];
-        GLuint program = sc_program_gl_name(r->programs, r->groups[run->group].program);
+    for (int g = 0; !prepass && g < ncommands; g++) {
+        GLuint program = sc_program_gl_name(r->programs, r->groups[g].program);
         if (program != *current) {
             gl->UseProgram(program);
             *current = program;
             r->program_switches++;
         }
         gl->DrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                                 (const void *)((size_t)i * sizeof(peel_command)));
+                                 (const void *)((size_t)g * sizeof(peel_command)));
         r->draw_calls++;
     }
     gl->BindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gl->VertexArrayElementBuffer(r->vertex_array, r->index_buffer);
 }
 
-int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_eye[3],
-                 GLuint *current, sc_error *err)
+/* The layers of one batch (slots [first, first + count)); batch b's
+ * queries. The best hits and the depth of earlier batches stay. */
+static void peel_batch(sc_renderer *r, int b, int first, int count, GLuint *current)
 {
     const sc_gl *gl = r->gl;
-    r->peel_issued = 0;
-    if (!n)   /* nothing in view: nothing drawn (the depth is cleared) */
-        return SC_OK;
-    if (peel_resources(r, err) != SC_OK)
-        return SC_FAIL;
-    /* Every hull once, by program (one draw call per program in the
-     * intersection passes; the pre-pass draws them all in one). */
-    int nruns = 0, nidx = 0;
-    for (int i = 0; i < n; i++) {
-        int run = nruns ? nruns - 1 : 0, first = nidx;
-        sc_render_append_hull(r, &nruns, &nidx, r->items[i].hull, 0);
-        if (nruns - 1 != run)
-            run = nruns - 1;
-        peel_slot *slot = (peel_slot *)r->peel_slots + i;
-        hull_tiles(r, vp, r->items[i].hull, slot->rect);
-        slot->first = (uint32_t)first;
-        slot->count = (uint32_t)(nidx - first);
-        slot->command = (uint32_t)run;
-        slot->pad = 0;
-    }
-    for (int i = 0; i < nruns; i++)
-        ((peel_command *)r->peel_commands)[i] = (peel_command){.count = 0, .instances = 1,
-                                             .first = (uint32_t)r->runs[i].first};
-    if (nidx)
-        gl->NamedBufferSubData(r->index_buffer, 0, (GLsizeiptr)nidx * 4, r->frame_indices);
-    if (n)
-        gl->NamedBufferSubData(r->peel_buffers[0], 0, (GLsizeiptr)((size_t)n * sizeof(peel_slot)),
-                               r->peel_slots);
-    gl->ProgramUniformMatrix4fv(r->peel_program, SCG_LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
-    gl->ProgramUniform3fv(r->peel_program, SCG_LOC_RASTER_EYE, 1, raster_eye);
-    gl->ProgramUniform1i(r->cull_program, 0, n);
-
+    const sc_gl_target *t = &r->target;
     static const float zero = 0, one = 1;
     static const GLuint none = 0;
-    gl->ClearTexImage(r->peel_best, 0, GL_RED, GL_FLOAT, &one);
+    GLuint *queries = r->peel_queries + b * (SC_PEEL_MAX_LAYERS + 1);
+    int ncommands = r->ngroups;
+    /* The batch's hulls, less those behind the hits of the batches before. */
+    int list = 0;
+    cull(r, first, count, b ? CULL_FAR : CULL_ALL, list, ncommands, current);
     /* Layer 0's entries: nothing is in front of the first layer. */
     gl->ClearTexImage(r->peel_entry[0], 0, GL_RED, GL_FLOAT, &zero);
-    gl->BindTextureUnit(UNIT_BEST, r->peel_best);
-    gl->BindImageTexture(SCG_IMAGE_BEST_DEPTH, r->peel_best, 0, GL_FALSE, 0, GL_READ_WRITE,
-                         GL_R32F);
-    gl->BindImageTexture(IMAGE_PENDING, r->peel_pending_tiles, 0, GL_FALSE, 0, GL_READ_WRITE,
-                         GL_R32UI);
-    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_SLOTS, r->peel_buffers[0]);
-    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_SOURCE, r->index_buffer);
-    gl->CullFace(GL_BACK);
-    const sc_gl_target *t = &r->target;
-    r->peel_issued = 0;
-    /* The list layer k draws: the frame's for the first two pre-passes and
-     * the first intersection, then the compact one the culling made. */
-    int list = 0;
-    for (int k = 1; k <= SC_PEEL_MAX_LAYERS + 1; k++) {
+    for (int k = 1; k <= SC_PEEL_MAX_LAYERS; k++) {
         int cur = k & 1;
+        int last = k == SC_PEEL_MAX_LAYERS;
         /* The pre-pass of layer k: only where layer k-1 found candidates. */
         if (k > 1)
-            gl->BeginConditionalRender(r->peel_queries[k - 1], GL_QUERY_WAIT);
+            gl->BeginConditionalRender(queries[k - 2], GL_QUERY_WAIT);
         gl->BindFramebuffer(GL_FRAMEBUFFER, r->peel_fb[cur]);
         gl->DepthFunc(GL_LESS);
         gl->DepthMask(GL_TRUE);   /* before the clear, which it masks */
         gl->ClearNamedFramebufferfv(r->peel_fb[cur], GL_COLOR, 0, &one);
         gl->ClearNamedFramebufferfv(r->peel_fb[cur], GL_DEPTH, 0, &one);
-        if (k > 1)
-            gl->ClearTexImage(r->peel_pending_tiles, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+        gl->ClearTexImage(r->peel_pending_tiles, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
         gl->UseProgram(r->peel_program);
         *current = r->peel_program;
         gl->BindTextureUnit(UNIT_PREVIOUS_ENTRY, r->peel_entry[cur ^ 1]);
-        /* The pass past the last layer counts what is left undone. */
-        GLenum query = k > SC_PEEL_MAX_LAYERS ? GL_SAMPLES_PASSED : GL_ANY_SAMPLES_PASSED;
-        gl->BeginQuery(query, r->peel_queries[k]);
-        draw_list(r, list, nruns, nidx, 1, current);
-        gl->EndQuery(query);
+        gl->BeginQuery(GL_ANY_SAMPLES_PASSED, queries[k - 1]);
+        draw_list(r, list, ncommands, 1, current);
+        gl->EndQuery(GL_ANY_SAMPLES_PASSED);
         if (k > 1)
             gl->EndConditionalRender();
-        if (k > SC_PEEL_MAX_LAYERS)
-            break;
         /* From the second layer on, the hulls that touch a tile with work. */
         if (k > 1) {
-            list = 1 + (k & 1);
-            gl->NamedBufferSubData(r->peel_buffers[2 + list], 0,
-                                   (GLsizeiptr)((size_t)nruns * sizeof(peel_command)),
-                                   r->peel_commands);
-            gl->MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_LIST, r->peel_buffers[list]);
-            gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_COMMANDS,
-                               r->peel_buffers[2 + list]);
-            gl->UseProgram(r->cull_program);
-            *current = r->cull_program;
-            gl->DispatchCompute((GLuint)(n + 63) / 64, 1, 1);
-            gl->MemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
+            list ^= 1;
+            cull(r, first, count, CULL_PENDING, list, ncommands, current);
         }
         /* The intersection of layer k, where the pre-pass passed anything. */
-        gl->BeginConditionalRender(r->peel_queries[k], GL_QUERY_WAIT);
+        gl->BeginConditionalRender(queries[k - 1], GL_QUERY_WAIT);
         gl->BindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
         gl->DepthFunc(GL_EQUAL);
         gl->DepthMask(GL_FALSE);
-        draw_list(r, list, nruns, nidx, 0, current);
+        draw_list(r, list, ncommands, 0, current);
         gl->EndConditionalRender();
         /* The next pre-pass reads the best hits as a texture. */
         gl->MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        r->peel_issued = k;
+        if (last) {
+            /* One more pre-pass counts what the layers left undone. */
+            gl->BeginConditionalRender(queries[k - 1], GL_QUERY_WAIT);
+            gl->BindFramebuffer(GL_FRAMEBUFFER, r->peel_fb[cur ^ 1]);
+            gl->DepthFunc(GL_LESS);
+            gl->DepthMask(GL_TRUE);
+            gl->ClearNamedFramebufferfv(r->peel_fb[cur ^ 1], GL_DEPTH, 0, &one);
+            gl->UseProgram(r->peel_program);
+            *current = r->peel_program;
+            gl->BindTextureUnit(UNIT_PREVIOUS_ENTRY, r->peel_entry[cur]);
+            gl->BeginQuery(GL_SAMPLES_PASSED, queries[k]);
+            draw_list(r, list, ncommands, 1, current);
+            gl->EndQuery(GL_SAMPLES_PASSED);
+            gl->EndConditionalRender();
+        }
+    }
+}
+
+int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_eye[3],
+                 GLuint *current, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    r->peel_batches = 0;
+    if (!n)   /* nothing in view: nothing drawn (the depth is cleared) */
+        return SC_OK;
+    if (peel_resources(r, err) != SC_OK)
+        return SC_FAIL;
+    /* The frame's index list in the order of the hulls (front to back);
+     * each program's region of a compact list as long as all its hulls'
+     * indices; a slot per hull. */
+    int nruns = 0, nidx = 0;
+    peel_command *commands = r->peel_commands;
+    for (int g = 0; g < r->ngroups; g++)
+        commands[g] = (peel_command){.instances = 1};
+    for (int i = 0; i < n; i++) {
+        int k = r->items[i].hull, from = nidx;
+        sc_render_append_hull(r, &nruns, &nidx, k, 0);
+        peel_slot *slot = (peel_slot *)r->peel_slots + i;
+        hull_tiles(r, vp, k, slot);
+        slot->first = (uint32_t)from;
+        slot->count = (uint32_t)(nidx - from);
+        slot->command = (uint32_t)r->hull_group[k];
+        commands[r->hull_group[k]].count += slot->count;
+    }
+    for (int g = 0, base = 0; g < r->ngroups; g++) {
+        int size = (int)commands[g].count;
+        commands[g].count = 0;
+        commands[g].first = (uint32_t)base;
+        base += size;
+    }
+    gl->NamedBufferSubData(r->index_buffer, 0, (GLsizeiptr)nidx * 4, r->frame_indices);
+    gl->NamedBufferSubData(r->peel_buffers[0], 0, (GLsizeiptr)((size_t)n * sizeof(peel_slot)),
+                           r->peel_slots);
+    gl->ProgramUniformMatrix4fv(r->peel_program, SCG_LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
+    gl->ProgramUniform3fv(r->peel_program, SCG_LOC_RASTER_EYE, 1, raster_eye);
+
+    static const float one = 1;
+    gl->ClearTexImage(r->peel_best, 0, GL_RED, GL_FLOAT, &one);
+    gl->BindTextureUnit(UNIT_BEST, r->peel_best);
+    gl->BindImageTexture(SCG_IMAGE_BEST_DEPTH, r->peel_best, 0, GL_FALSE, 0, GL_READ_WRITE,
+                         GL_R32F);
+    gl->BindImageTexture(IMAGE_PENDING, r->peel_pending_tiles, 0, GL_FALSE, 0, GL_READ_WRITE,
+                         GL_R32UI);
+    gl->BindImageTexture(IMAGE_TILE_FAR, r->peel_tile_far, 0, GL_FALSE, 0, GL_READ_WRITE,
+                         GL_R32F);
+    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_SLOTS, r->peel_buffers[0]);
+    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, BUFFER_SOURCE, r->index_buffer);
+    gl->CullFace(GL_BACK);
+    /* Batches front to back, batch_hulls doubling; after each but the last
+     * the farthest best hit per tile, for culling the later ones. */
+    int tw = (r->target.width + PEEL_TILE - 1) / PEEL_TILE;
+    int th = (r->target.height + PEEL_TILE - 1) / PEEL_TILE;
+    for (int first = 0, size = r->desc.batch_hulls; first < n; first += size, size *= 2) {
+        if (r->peel_batches == SC_PEEL_MAX_BATCHES - 1 || size > n - first)
+            size = n - first;   /* the last batch takes the rest */
+        peel_batch(r, r->peel_batches++, first, size, current);
+        if (first + size < n) {
+            gl->UseProgram(r->tile_far_program);
+            *current = r->tile_far_program;
+            gl->DispatchCompute((GLuint)(tw + 7) / 8, (GLuint)(th + 7) / 8, 1);
+        }
     }
     for (int b = BUFFER_SLOTS; b <= BUFFER_COMMANDS; b++)
         gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, (GLuint)b, 0);
     /* The depth of the best hits, for whatever composes with the frame. */
+    const sc_gl_target *t = &r->target;
     gl->BindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
     gl->DepthMask(GL_TRUE);
     gl->ClearNamedFramebufferfv(t->framebuffer, GL_DEPTH, 0, &one);
@@ -480,8 +554,8 @@ int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_e
     gl->BindVertexArray(r->vertex_array);
     gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->DepthFunc(GL_LESS);
-    gl->BindImageTexture(SCG_IMAGE_BEST_DEPTH, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    gl->BindImageTexture(IMAGE_PENDING, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    for (GLuint unit = SCG_IMAGE_BEST_DEPTH; unit <= IMAGE_TILE_FAR; unit++)
+        gl->BindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     gl->BindTextureUnit(UNIT_PREVIOUS_ENTRY, 0);
     gl->BindTextureUnit(UNIT_BEST, 0);
     return sc_gl_check(gl, "depth peeling", err);
@@ -492,14 +566,15 @@ void sc_peel_finish(sc_renderer *r)
     const sc_gl *gl = r->gl;
     r->peel_layers = 0;
     r->peel_pending = 0;
-    if (!r->peel_issued)
-        return;
-    for (int k = 1; k <= r->peel_issued; k++) {
-        GLuint any = 0;
-        gl->GetQueryObjectuiv(r->peel_queries[k], GL_QUERY_RESULT, &any);
-        r->peel_layers += any != 0;
+    for (int b = 0; b < r->peel_batches; b++) {
+        GLuint *queries = r->peel_queries + b * (SC_PEEL_MAX_LAYERS + 1);
+        for (int k = 0; k < SC_PEEL_MAX_LAYERS; k++) {
+            GLuint any = 0;
+            gl->GetQueryObjectuiv(queries[k], GL_QUERY_RESULT, &any);
+            r->peel_layers += any != 0;
+        }
+        GLuint pending = 0;
+        gl->GetQueryObjectuiv(queries[SC_PEEL_MAX_LAYERS], GL_QUERY_RESULT, &pending);
+        r->peel_pending += pending;
     }
-    GLuint pending = 0;
-    gl->GetQueryObjectuiv(r->peel_queries[SC_PEEL_MAX_LAYERS + 1], GL_QUERY_RESULT, &pending);
-    r->peel_pending = pending;
 }

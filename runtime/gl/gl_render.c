@@ -98,16 +98,16 @@ static void order_hulls(sc_renderer *r, int n)
     sort_item *items = r->items;
     qsort(items, (size_t)n, sizeof *items, by_order);
     /* Manhattan sets (major: the set) are in order already: one program. */
-    int peel = r->desc.ert == SC_TERMINATION_PEEL;
-    if ((r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK && !peel) || r->manhattan)
+    /* Depth peeling draws in batches front to back (gl_peel.c) and groups
+     * each batch's hulls by program on the GPU. */
+    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK || r->desc.ert == SC_TERMINATION_PEEL ||
+        r->manhattan)
         return;
     /* By program: the programs in the order of their nearest hull, front to
      * back within one. Hybrid: the same within each bucket of batch_hulls
      * hulls taken front to back. In depth order, a group's first hull in a
      * range is its nearest there. */
-    /* Depth peeling draws every hull in each pass, in any order: by
-     * program, one draw call each. */
-    int bucket = r->desc.order == SC_HULL_ORDER_HYBRID && !peel ? r->desc.batch_hulls : (n ? n : 1);
+    int bucket = r->desc.order == SC_HULL_ORDER_HYBRID ? r->desc.batch_hulls : (n ? n : 1);
     for (int start = 0; start < n; start += bucket) {
         int end = start + bucket < n ? start + bucket : n;
         for (int g = 0; g < r->ngroups; g++)
@@ -466,7 +466,7 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     int peeling = r->desc.ert == SC_TERMINATION_PEEL;
     int peel = peeling && own_target && !ninside;
     r->peel_fallback = peeling && !peel;
-    r->peel_issued = 0;
+    r->peel_batches = 0;
     for (int i = 0; r->peel_fallback && i < n; i++)
         if (inside_program(r, r->hull_group[r->items[i].hull], err) != SC_OK)
             return SC_FAIL;

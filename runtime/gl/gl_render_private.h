@@ -57,7 +57,11 @@ static inline unsigned view_image_output(sc_show view)
 
 /* Depth peeling's most layers a frame: a pixel whose ray enters more hulls
  * in front of its hit keeps the best hit of these (docs/runtime.md). */
-#define SC_PEEL_MAX_LAYERS 16
+#define SC_PEEL_MAX_LAYERS 8
+/* Batches of hulls peeled one after the other, front to back, doubling
+ * from batch_hulls; the last takes what is left. */
+#define SC_PEEL_MAX_BATCHES 12
+#define SC_PEEL_QUERIES (SC_PEEL_MAX_BATCHES * (SC_PEEL_MAX_LAYERS + 1))
 
 static inline int manual_ert(sc_ray_termination mode)
 {
@@ -174,17 +178,19 @@ struct sc_renderer {
      * so far (R32F image), one query per layer and one past the last, the
      * pre-pass and resolve programs; made on first use. */
     GLuint peel_entry[2], peel_fb[2], peel_best, peel_depth;
-    GLuint peel_queries[SC_PEEL_MAX_LAYERS + 2];
+    GLuint peel_queries[SC_PEEL_QUERIES];
     GLuint peel_program, resolve_program, peel_vao;
-    /* Its culling: the compute program, the tiles with work (r32ui), the
-     * buffers (slots; two compact index lists; their commands) and their
-     * CPU sides (gl_peel.c's peel_slot and peel_command). */
-    GLuint cull_program, peel_pending_tiles, peel_buffers[5];
+    /* Its culling: the compute programs, the tiles with work (r32ui) and
+     * the farthest best hit per tile (r32f), the buffers (slots; two
+     * compact index lists; their commands) and their CPU sides (gl_peel.c's
+     * peel_slot and peel_command). */
+    GLuint cull_program, tile_far_program, peel_pending_tiles, peel_tile_far, peel_buffers[5];
     void *peel_slots, *peel_commands;
     size_t peel_capacity;
     int peel_w, peel_h;
-    int peel_issued;         /* of the last frame: layers issued (0: not peeled) */
-    int peel_layers;         /* of the last frame: layers that found work */
+    int peel_batches;        /* of the last frame: batches peeled (0: not peeled) */
+    int peel_layers;         /* of the last frame: layers that found work,
+                                summed over the batches */
     long long peel_pending;  /* of the last frame: hull fragments still in
                                 front of their pixel's best hit after the
                                 last layer (0 unless the layers ran out) */
