@@ -486,13 +486,16 @@ int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_e
     /* The frame's index list in the order of the hulls (front to back);
      * each program's region of a compact list as long as all its hulls'
      * indices; a slot per hull. */
-    int nruns = 0, nidx = 0;
+    int nidx = 0;
     peel_command *commands = r->peel_commands;
     for (int g = 0; g < r->ngroups; g++)
         commands[g] = (peel_command){.instances = 1};
     for (int i = 0; i < n; i++) {
         int k = r->items[i].hull, from = nidx;
-        sc_render_append_hull(r, &nruns, &nidx, k, 0);
+        const sc_subpatch *s = &r->hulls.subpatches[k];
+        memcpy(r->frame_indices + nidx, r->hulls.indices + s->first_index,
+               (size_t)s->index_count * sizeof(uint32_t));
+        nidx += s->index_count;
         peel_slot *slot = (peel_slot *)r->peel_slots + i;
         hull_tiles(r, vp, k, slot);
         slot->first = (uint32_t)from;

@@ -137,7 +137,7 @@ static int inside_program(sc_renderer *r, int g, sc_error *err)
 
 /* Appends hull k to the frame's index list and to the last draw call when
  * it continues it, else to a new one. */
-void sc_render_append_hull(sc_renderer *r, int *nruns, int *nidx, int k, int inside)
+static void append_hull(sc_renderer *r, int *nruns, int *nidx, int k, int inside)
 {
     const sc_subpatch *s = &r->hulls.subpatches[k];
     int g = r->hull_group[k];
@@ -160,12 +160,6 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
     if (nidx > first)
         gl->NamedBufferSubData(r->index_buffer, (GLintptr)first * 4,
                                (GLsizeiptr)(nidx - first) * 4, r->frame_indices + first);
-    sc_render_draw_runs(r, nruns, current);
-}
-
-void sc_render_draw_runs(sc_renderer *r, int nruns, GLuint *current)
-{
-    const sc_gl *gl = r->gl;
     for (int i = 0; i < nruns; i++) {
         const draw_run *run = &r->runs[i];
         const group *gr = &r->groups[run->group];
@@ -529,7 +523,7 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     for (int g = 0; g < r->ngroups; g++)
         for (int i = 0; i < ninside; i++)
             if (r->hull_group[r->inside[i]] == g)
-                sc_render_append_hull(r, &nruns, &nidx, r->inside[i], 1);
+                append_hull(r, &nruns, &nidx, r->inside[i], 1);
     submit_runs(r, nruns, 0, nidx, &current);
     if (manual && ninside && n)
         refresh_nearest(r);
@@ -549,7 +543,7 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
                 culled++;
                 continue;
             }
-            sc_render_append_hull(r, &nruns, &nidx, k, r->peel_fallback ? 2 : 0);
+            append_hull(r, &nruns, &nidx, k, r->peel_fallback ? 2 : 0);
             drawn++;
         }
         r->culled += culled;

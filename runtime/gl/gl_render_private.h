@@ -235,11 +235,6 @@ void sc_render_eye_projection(const float view[16], const float proj[16], float 
 int sc_render_hulls(sc_renderer *r, const double eye[3], const double fwd[3], const float vp[16],
                     float footprint, int own_target, sc_error *err);
 
-/* The frame's index list and draw calls: hull k appended (inside: see
- * draw_run), and runs [0, nruns) drawn (indices uploaded already). */
-void sc_render_append_hull(sc_renderer *r, int *nruns, int *nidx, int k, int inside);
-void sc_render_draw_runs(sc_renderer *r, int nruns, GLuint *current);
-
 /* Depth peeling (gl_peel.c): draws r->items[0, n) (no hull holding the
  * eye) into the renderer's own target, bound, with the frame's uniforms
  * set; vp and raster_eye for the pre-pass. */
