@@ -38,6 +38,8 @@ typedef struct sc_render_desc {
     int batch_hulls;        /* hulls per batch in the manual modes (a batch
                                reads the hits of the batches before it;
                                doubling after a batch that culled no hull),
+                               the first of depth peeling's batches (which
+                               double),
                                and per bucket of the hybrid order
                                (SC_RENDER_DEFAULT_BATCH_HULLS) */
     sc_program_cache *programs; /* the cache to take programs from, shared

@@ -458,7 +458,9 @@ typedef struct sc_renderer_desc {
     sc_hull_order order;
     int batch_hulls;           /* hulls per batch in the manual termination
                                   modes (a batch sees the hits of those
-                                  before it) and per hybrid bucket (32) */
+                                  before it), the first of depth peeling's
+                                  doubling batches, and per hybrid bucket
+                                  (32) */
     size_t gpu_memory_budget;  /* most bytes of GPU data (patch data, hulls,
                                   colours: sc_renderer_info.gpu_bytes) the
                                   renderer may upload; a scene that needs
