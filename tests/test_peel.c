@@ -13,6 +13,7 @@
 #include "gl_context.h"
 #include "gl_context_util.h"
 #include "gl_render_private.h"
+#include "emit_glsl.h"
 #include "imgdiff.h"
 #include "io.h"
 #include "refcast.h"
@@ -351,4 +352,43 @@ TEST(peel_cli)
     CHECK_CONTAINS(out, " ert=peel ");
     free(out);
     free(err_text);
+}
+
+/* What the ert4 key asks of the generated program (scg_generate checks it
+ * with glslang): no gl_FragDepth anywhere, the early fragment tests, the
+ * image of the best hits, the hit kept only when nearer, after the
+ * intersection; and a key asking for the hull view (which writes the
+ * hull's depth where rays miss) refused. */
+TEST(peel_generated_program)
+{
+    scg_key key;
+    sc_error err = {0};
+    CHECK_INT(scg_key_parse("bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert4-out.shade.aov", &key,
+                            &err),
+              SC_OK);
+    CHECK_INT(key.ert, SCG_ERT_PEEL);
+    scg_generated gen;
+    CHECK_INT(scg_generate(&key, &gen, &err), SC_OK);
+    const char *frag = scg_text_str(&gen.fragment);
+    const char *early = strstr(frag, "layout(early_fragment_tests) in;");
+    const char *image = strstr(frag, "uniform coherent image2D sc_best_depth;");
+    const char *call = strstr(frag, "sc_intersect(hit");
+    const char *test = strstr(frag, "if (sc_depth >= imageLoad(sc_best_depth");
+    const char *store = strstr(frag, "imageStore(sc_best_depth");
+    int ok = early && image && call && test && store && call < test && test < store &&
+             !strstr(frag, "gl_FragDepth") && !strstr(frag, "sc_nearest_t");
+    scg_generated_free(&gen);
+    CHECK(ok);
+    /* The same key with ert0 writes gl_FragDepth and has none of it. */
+    key.ert = SCG_ERT_NONE;
+    CHECK_INT(scg_generate(&key, &gen, &err), SC_OK);
+    frag = scg_text_str(&gen.fragment);
+    ok = strstr(frag, "gl_FragDepth = ") && !strstr(frag, "early_fragment_tests") &&
+         !strstr(frag, "sc_best_depth");
+    scg_generated_free(&gen);
+    CHECK(ok);
+    CHECK_INT(scg_key_parse("bez3x3-poly-dc-trim0-newton-cp-it4-tol0.05-ert4-out.hull", &key, &err),
+              SC_OK);
+    CHECK_INT(scg_key_check(&key, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "ert4");
 }
