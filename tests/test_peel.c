@@ -17,6 +17,7 @@
 #include "imgdiff.h"
 #include "io.h"
 #include "refcast.h"
+#include "splinecast.h"
 #include "test.h"
 
 static const char *scene_path(const char *name)
@@ -391,4 +392,50 @@ TEST(peel_generated_program)
               SC_OK);
     CHECK_INT(scg_key_check(&key, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "ert4");
+}
+
+/* Through the public API (sc_make_renderer, sc_render: sc_draw and
+ * sc_read_frame), Franke's C2 terrain (288 prisms, the tri4 program at
+ * ert4) from an oblique view and from inside the prisms' box: the
+ * reference's image within the targets, with no read-back. */
+TEST(peel_terrain_public_api)
+{
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    sc_scene_desc sdesc = {.franke = 144};
+    CHECK_INT(sc_make_scene(&sdesc, &scene, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    static const char *const views[] = {"1.6,-1.2,1.4,0.5,0.5,0.2,35", "0.5,0.02,1.1,0.5,0.6,0.3,60"};
+    for (int v = 0; v < 2; v++) {
+        sc_renderer_id renderer;
+        sc_renderer_desc desc = {.termination = SC_TERMINATION_PEEL};
+        CHECK_INT(sc_make_renderer(ctx, scene, &desc, &renderer, &err), SC_OK);
+        sc_key key;
+        int count = 0;
+        CHECK_INT(sc_query_renderer_keys(renderer, &key, 1, &count, &err), SC_OK);
+        CHECK_STR(key.text, "tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert4-out.shade.aov");
+        sc_camera_desc camera = {.width = 128, .height = 96, .text = views[v]};
+        sc_frame_id gpu, ref;
+        sc_comparison cmp;
+        CHECK_INT(sc_render(renderer, &camera, &gpu, &err), SC_OK);
+        CHECK_INT(sc_render_reference(scene, &camera, NULL, &ref, &err), SC_OK);
+        CHECK_INT(sc_compare_frames(ref, gpu, &cmp, &err), SC_OK);
+        sc_renderer_info info;
+        CHECK_INT(sc_query_renderer_info(renderer, &info, &err), SC_OK);
+        if (!(cmp.fail_pct <= 0.1))
+            printf("  %s: %s\n", views[v], cmp.line);
+        CHECK(cmp.reference_hits > 2000);
+        CHECK(cmp.fail_pct <= 0.1);
+        CHECK_INT(info.readbacks, 0);
+        CHECK(info.peel_layers >= 1);
+        CHECK(info.intersections >= cmp.test_hits);
+        sc_destroy_frame(gpu);
+        sc_destroy_frame(ref);
+        sc_destroy_renderer(renderer);
+    }
+    sc_shutdown();
 }
