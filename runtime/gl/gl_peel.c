@@ -456,6 +456,17 @@ static void peel_batch(sc_renderer *r, int b, int first, int count, GLuint *curr
         gl->EndConditionalRender();
         /* The next pre-pass reads the best hits as a texture. */
         gl->MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        r->peel_issued[b] = k;
+        /* Where the query's answer is there already (llvmpipe has it: its
+         * conditional rendering waits for it on the CPU), a layer that
+         * found nothing ends the batch, rather than issuing empty
+         * conditional layers, each a wait there; never waited for here. */
+        GLuint available = 0, found = 1;
+        gl->GetQueryObjectuiv(queries[k - 1], GL_QUERY_RESULT_AVAILABLE, &available);
+        if (available)
+            gl->GetQueryObjectuiv(queries[k - 1], GL_QUERY_RESULT, &found);
+        if (!found)
+            return;
         if (last) {
             /* One more pre-pass counts what the layers left undone. */
             gl->BeginConditionalRender(queries[k - 1], GL_QUERY_WAIT);
@@ -470,6 +481,7 @@ static void peel_batch(sc_renderer *r, int b, int first, int count, GLuint *curr
             draw_list(r, list, ncommands, 1, current);
             gl->EndQuery(GL_SAMPLES_PASSED);
             gl->EndConditionalRender();
+            r->peel_issued[b] = k + 1;
         }
     }
 }
@@ -534,6 +546,7 @@ int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_e
     for (int first = 0, size = r->desc.batch_hulls; first < n; first += size, size *= 2) {
         if (r->peel_batches == SC_PEEL_MAX_BATCHES - 1 || size > n - first)
             size = n - first;   /* the last batch takes the rest */
+        r->peel_issued[r->peel_batches] = 0;
         peel_batch(r, r->peel_batches++, first, size, current);
         if (first + size < n) {
             gl->UseProgram(r->tile_far_program);
@@ -571,13 +584,14 @@ void sc_peel_finish(sc_renderer *r)
     r->peel_pending = 0;
     for (int b = 0; b < r->peel_batches; b++) {
         GLuint *queries = r->peel_queries + b * (SC_PEEL_MAX_LAYERS + 1);
-        for (int k = 0; k < SC_PEEL_MAX_LAYERS; k++) {
+        for (int k = 0; k < r->peel_issued[b] && k < SC_PEEL_MAX_LAYERS; k++) {
             GLuint any = 0;
             gl->GetQueryObjectuiv(queries[k], GL_QUERY_RESULT, &any);
             r->peel_layers += any != 0;
         }
         GLuint pending = 0;
-        gl->GetQueryObjectuiv(queries[SC_PEEL_MAX_LAYERS], GL_QUERY_RESULT, &pending);
+        if (r->peel_issued[b] > SC_PEEL_MAX_LAYERS)
+            gl->GetQueryObjectuiv(queries[SC_PEEL_MAX_LAYERS], GL_QUERY_RESULT, &pending);
         r->peel_pending += pending;
     }
 }

@@ -189,6 +189,8 @@ struct sc_renderer {
     size_t peel_capacity;
     int peel_w, peel_h;
     int peel_batches;        /* of the last frame: batches peeled (0: not peeled) */
+    int peel_issued[SC_PEEL_MAX_BATCHES]; /* its layers issued per batch (one
+                                more: the count past the last layer) */
     int peel_layers;         /* of the last frame: layers that found work,
                                 summed over the batches */
     long long peel_pending;  /* of the last frame: hull fragments still in
