@@ -46,7 +46,9 @@
  *
  * Up to SC_PEEL_MAX_LAYERS layers are issued a batch, each conditional on
  * the query of the one before, so nothing is read back to the CPU between
- * them; one more pre-pass counts the fragments still pending after the
+ * them (a query whose answer is already there, as llvmpipe's is after its
+ * conditional rendering waited for it, and says nothing passed, ends the
+ * batch); one more pre-pass counts the fragments still pending after the
  * last layer (sc_peel_finish reads the queries once the frame has been
  * waited for). A resolve pass then writes gl_FragDepth from the best
  * hits, for whatever composes with the frame. */
