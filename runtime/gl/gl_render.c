@@ -460,7 +460,8 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     int peeling = r->desc.ert == SC_TERMINATION_PEEL;
     int peel = peeling && own_target && !ninside;
     r->peel_fallback = peeling && !peel;
-    r->peel_batches = 0;
+    r->peel_batches = r->peel_layers = 0;
+    r->peel_pending = 0;
     for (int i = 0; r->peel_fallback && i < n; i++)
         if (inside_program(r, r->hull_group[r->items[i].hull], err) != SC_OK)
             return SC_FAIL;

@@ -55,8 +55,9 @@ static inline unsigned view_image_output(sc_show view)
     }
 }
 
-/* Depth peeling's most layers a frame: a pixel whose ray enters more hulls
- * in front of its hit keeps the best hit of these (docs/runtime.md). */
+/* Depth peeling's most layers a batch: a pixel whose ray enters more hulls
+ * of a batch in front of its hit keeps the best hit of these
+ * (docs/runtime.md). */
 #define SC_PEEL_MAX_LAYERS 16
 /* Batches of hulls peeled one after the other, front to back, doubling
  * from batch_hulls; the last takes what is left. */
