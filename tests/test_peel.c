@@ -258,10 +258,13 @@ TEST(peel_eye_inside_hull_falls_back)
     sc_scene_free(&scene);
 }
 
-/* Into an application's framebuffer (sc_renderer_draw_app: its own depth
- * buffer, no target to peel in) a peeling renderer draws with the ert0
- * programs: the picture and depth of the manual mode's draw. */
-TEST(peel_draw_app_falls_back)
+/* Into an application's framebuffer (sc_renderer_draw_app) a peeling
+ * renderer peels in its own target and composes colour and depth into the
+ * application's under its depth test: the manual mode's picture (within
+ * the rounding of the target's sRGB colour, 2 levels) and depth, and in
+ * front of the application's own depth only where it is nearer; no ert0
+ * program was needed. */
+TEST(peel_draw_app_composes)
 {
     const char *why;
     sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
@@ -287,10 +290,17 @@ TEST(peel_draw_app_falls_back)
     gl->TextureStorage2D(tex[1], 1, GL_DEPTH_COMPONENT32F, cam.width, cam.height);
     gl->NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, tex[0], 0);
     gl->NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, tex[1], 0);
-    unsigned char *colour[2] = {sc_alloc((size_t)n, 4), sc_alloc((size_t)n, 4)};
-    float *depth[2] = {sc_alloc((size_t)n, sizeof(float)), sc_alloc((size_t)n, sizeof(float))};
-    static const sc_ray_termination modes[2] = {SC_TERMINATION_MANUAL, SC_TERMINATION_PEEL};
-    for (int m = 0; m < 2; m++) {
+    /* manual, peel; the same two over the application's geometry. */
+    static const sc_ray_termination modes[4] = {SC_TERMINATION_MANUAL, SC_TERMINATION_PEEL,
+                                                SC_TERMINATION_MANUAL, SC_TERMINATION_PEEL};
+    unsigned char *colour[4];
+    float *depth[4];
+    float split = 1;
+    for (int m = 0; m < 4; m++) {
+        colour[m] = sc_alloc((size_t)n, 4);
+        depth[m] = sc_alloc((size_t)n, sizeof(float));
+    }
+    for (int m = 0; m < 4; m++) {
         sc_render_desc desc = {.ert = modes[m]};
         sc_renderer *r;
         CHECK_INT(sc_renderer_create(gl, &scene, &desc, &r, &err), SC_OK);
@@ -299,6 +309,14 @@ TEST(peel_draw_app_falls_back)
         static const float black[4] = {0, 0, 0, 1}, far = 1;
         gl->ClearNamedFramebufferfv(fb, GL_COLOR, 0, black);
         gl->ClearNamedFramebufferfv(fb, GL_DEPTH, 0, &far);
+        /* The application's geometry: the left half of the view at a
+         * depth in the middle of the teapot's. */
+        if (m >= 2) {
+            gl->Enable(GL_SCISSOR_TEST);
+            gl->Scissor(0, 0, cam.width / 2, cam.height);
+            gl->ClearNamedFramebufferfv(fb, GL_DEPTH, 0, &split);
+            gl->Disable(GL_SCISSOR_TEST);
+        }
         CHECK_INT(sc_renderer_draw_app(r, view, proj, &err), SC_OK);
         gl->Finish();
         gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -306,21 +324,43 @@ TEST(peel_draw_app_falls_back)
         gl->GetTextureImage(tex[1], 0, GL_DEPTH_COMPONENT, GL_FLOAT, n * 4, depth[m]);
         sc_render_stats stats;
         sc_renderer_stats(r, &stats);
-        if (m == 1)
-            CHECK_INT(stats.peel_layers, 0);
+        CHECK_INT(stats.programs, 1);   /* no ert0 sibling: peeled, not fallen back */
+        gl->UseProgram(0);
         sc_renderer_destroy(r);
         gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (m == 1) {
+            /* The middle of the teapot's depths, for the geometry. */
+            float lo = 1, hi = 0;
+            for (int p = 0; p < n; p++)
+                if (depth[0][p] < 1) {
+                    lo = fminf(lo, depth[0][p]);
+                    hi = fmaxf(hi, depth[0][p]);
+                }
+            split = 0.5f * (lo + hi);
+        }
     }
-    long drawn = 0, differ = 0;
-    for (int p = 0; p < n; p++) {
-        drawn += depth[0][p] < 1;
-        differ += memcmp(colour[0] + 4 * p, colour[1] + 4 * p, 4) != 0 || depth[0][p] != depth[1][p];
+    for (int pair = 0; pair < 2; pair++) {
+        const int a = 2 * pair, b = 2 * pair + 1;
+        long drawn = 0, differ = 0, hidden = 0;
+        for (int p = 0; p < n; p++) {
+            drawn += depth[a][p] < (pair ? split : 1);
+            int off = fabsf(depth[a][p] - depth[b][p]) > 1e-6f;
+            for (int c = 0; c < 4; c++)
+                off |= abs(colour[a][4 * p + c] - colour[b][4 * p + c]) > 2;
+            differ += off;
+            /* Over the geometry's half, nothing behind it was drawn. */
+            hidden += pair && p % cam.width < cam.width / 2 && depth[b][p] > split;
+        }
+        if (differ > n / 1000)
+            fprintf(stderr, "  draw_app %s: %ld of %d pixels differ\n", pair ? "over geometry" : "alone",
+                    differ, n);
+        CHECK(drawn > n / 16);
+        CHECK(differ <= n / 1000);
+        CHECK_INT(hidden, 0);
     }
-    CHECK(drawn > n / 8);
-    CHECK(differ <= n / 1000);
     gl->DeleteFramebuffers(1, &fb);
     gl->DeleteTextures(2, tex);
-    for (int m = 0; m < 2; m++) {
+    for (int m = 0; m < 4; m++) {
         free(colour[m]);
         free(depth[m]);
     }

@@ -252,9 +252,9 @@ void sc_peel_destroy(sc_renderer *r)
     release_targets(r);
     if (r->peel_queries[0])
         gl->DeleteQueries(SC_PEEL_QUERIES, r->peel_queries);
-    GLuint *programs[4] = {&r->peel_program, &r->resolve_program, &r->cull_program,
-                           &r->tile_far_program};
-    for (int i = 0; i < 4; i++)
+    GLuint *programs[5] = {&r->peel_program, &r->resolve_program, &r->cull_program,
+                           &r->tile_far_program, &r->composite_program};
+    for (int i = 0; i < 5; i++)
         if (*programs[i])
             gl->DeleteProgram(*programs[i]);
     if (r->peel_vao)
@@ -596,4 +596,42 @@ void sc_peel_finish(sc_renderer *r)
             gl->GetQueryObjectuiv(queries[SC_PEEL_MAX_LAYERS], GL_QUERY_RESULT, &pending);
         r->peel_pending += pending;
     }
+}
+
+/* The composition into an application's framebuffer: the target's colour
+ * (sRGB, read back to linear light, as the programs write it) and depth
+ * where it holds a hit. */
+static const char *composite_fragment_source =
+    "#version 450 core\n"
+    "layout(binding = 5) uniform sampler2D sc_frame_depth;\n"
+    "layout(binding = 6) uniform sampler2D sc_frame_colour;\n"
+    "layout(location = 0) uniform ivec2 sc_origin;\n"
+    "layout(location = 0) out vec4 sc_colour;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy) - sc_origin;\n"
+    "    float depth = texelFetch(sc_frame_depth, px, 0).r;\n"
+    "    if (depth >= 1.0)\n"
+    "        discard;\n"
+    "    sc_colour = texelFetch(sc_frame_colour, px, 0);\n"
+    "    gl_FragDepth = depth;\n"
+    "}\n";
+
+int sc_peel_composite(sc_renderer *r, const int viewport[4], sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    if (!r->composite_program) {
+        const char *sources[4] = {resolve_vertex_source, NULL, NULL, composite_fragment_source};
+        if (sc_peer_link(gl, sources, &r->composite_program, err) != SC_OK)
+            return SC_FAIL;
+    }
+    gl->UseProgram(r->composite_program);
+    gl->ProgramUniform2i(r->composite_program, 0, viewport[0], viewport[1]);
+    gl->BindTextureUnit(UNIT_PREVIOUS_ENTRY, r->target.depth);
+    gl->BindTextureUnit(UNIT_BEST, r->target.colour[SCG_FRAG_OUT_COLOUR]);
+    gl->Disable(GL_CULL_FACE);
+    gl->BindVertexArray(r->peel_vao ? r->peel_vao : r->vertex_array);
+    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    r->draw_calls++;
+    return sc_gl_check(gl, "composing the frame into the application's framebuffer", err);
 }

@@ -341,33 +341,21 @@ static int make_nearest_texture(sc_renderer *r, sc_error *err)
     return sc_gl_check(gl, "creating the nearest distances", err);
 }
 
-int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
+int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err)
 {
     const sc_gl *gl = r->gl;
     int manual = manual_ert(r->desc.ert);
     GLenum formats[SC_GL_TARGET_MAX_COLOURS];
     target_formats(&r->desc, formats);
-    if (r->target.width != cam->width || r->target.height != cam->height) {
+    if (r->target.width != width || r->target.height != height) {
         sc_gl_target_destroy(gl, &r->target);
-        sc_gl_target_desc td = {.width = cam->width, .height = cam->height};
+        sc_gl_target_desc td = {.width = width, .height = height};
         memcpy(td.formats, formats, sizeof td.formats);
         if (sc_gl_target_create(gl, &td, &r->target, err) != SC_OK ||
             (manual && make_nearest_texture(r, err) != SC_OK))
             return SC_FAIL;
         r->cosine_fovy = 0;
     }
-    r->camera = *cam;
-    double fwd[3], right[3], up[3];
-    sc_camera_frame(cam, fwd, right, up);
-    double znear, zfar;
-    depth_range(r, cam->eye, fwd, &znear, &zfar);
-    r->znear = znear;
-    r->zfar = zfar;
-    float view[16], proj[16], vp[16];
-    sc_camera_gl_matrices(cam, znear, zfar, view, proj);
-    sc_render_eye_projection(view, proj, vp);
-    float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
-
     float bg = background_linear();
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
     unsigned uncleared = 0;  /* read only at hits: 32 of the 56 bytes a pixel */
@@ -380,6 +368,25 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear, uncleared);
+    return SC_OK;
+}
+
+int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    if (sc_render_begin_target(r, cam->width, cam->height, err) != SC_OK)
+        return SC_FAIL;
+    r->camera = *cam;
+    double fwd[3], right[3], up[3];
+    sc_camera_frame(cam, fwd, right, up);
+    double znear, zfar;
+    depth_range(r, cam->eye, fwd, &znear, &zfar);
+    r->znear = znear;
+    r->zfar = zfar;
+    float view[16], proj[16], vp[16];
+    sc_camera_gl_matrices(cam, znear, zfar, view, proj);
+    sc_render_eye_projection(view, proj, vp);
+    float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
     r->time_hulls = r->desc.time_intersection;
     int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, 1, err);
     r->time_hulls = 0;

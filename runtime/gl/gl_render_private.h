@@ -180,7 +180,7 @@ struct sc_renderer {
      * pre-pass and resolve programs; made on first use. */
     GLuint peel_entry[2], peel_fb[2], peel_best, peel_depth;
     GLuint peel_queries[SC_PEEL_QUERIES];
-    GLuint peel_program, resolve_program, peel_vao;
+    GLuint peel_program, resolve_program, composite_program, peel_vao;
     /* Its culling: the compute programs, the tiles with work (r32ui) and
      * the farthest best hit per tile (r32f), the buffers (slots; two
      * compact index lists; their commands) and their CPU sides (gl_peel.c's
@@ -238,6 +238,10 @@ void sc_render_eye_projection(const float view[16], const float proj[16], float 
 int sc_render_hulls(sc_renderer *r, const double eye[3], const double fwd[3], const float vp[16],
                     float footprint, int own_target, sc_error *err);
 
+/* The renderer's own target at width × height (made again when the size
+ * changed), bound and cleared, GL_FRAMEBUFFER_SRGB enabled. */
+int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err);
+
 /* Depth peeling (gl_peel.c): draws r->items[0, n) (no hull holding the
  * eye) into the renderer's own target, bound, with the frame's uniforms
  * set; vp and raster_eye for the pre-pass. */
@@ -246,6 +250,10 @@ int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_e
 /* After the frame was waited for: its layers and what was left pending. */
 void sc_peel_finish(sc_renderer *r);
 void sc_peel_destroy(sc_renderer *r);
+/* Into the bound framebuffer (an application's) at viewport (x, y, w, h):
+ * the colour and depth of the renderer's target (its last frame, w × h)
+ * wherever it holds a hit, under the depth test the caller set. */
+int sc_peel_composite(sc_renderer *r, const int viewport[4], sc_error *err);
 
 /* sRGB 0.2, the reference images' background (shade.c), in linear light:
  * the colour attachment is sRGB, so the GL encodes it on the way in. */
