@@ -479,3 +479,54 @@ TEST(peel_terrain_public_api)
     }
     sc_shutdown();
 }
+
+/* A pack saved for depth peeling (sc_save_pack with SC_TERMINATION_PEEL)
+ * draws, through the packed renderer, the image a peeling renderer of the
+ * scene draws: the trimmed nine-hole patch at 96×96. */
+TEST(peel_packed_renderer)
+{
+    const char *scene_path = test_root("examples/scenes/trim_nine.obj");
+    char pack[1024];
+    snprintf(pack, sizeof pack, "%s/peel_nine.pack", test_tmpdir());
+    sc_error err = {0};
+    sc_scene_id scene;
+    sc_context_id ctx;
+    sc_renderer_desc desc = {.termination = SC_TERMINATION_PEEL};
+    CHECK_INT(sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err), SC_OK);
+    CHECK_INT(sc_save_pack(scene, &desc, pack, &err), SC_OK);
+    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
+        sc_shutdown();
+        SKIP("no GL context: %s", err.message);
+    }
+    sc_renderer_id direct, packed;
+    CHECK_INT(sc_make_renderer(ctx, scene, &desc, &direct, &err), SC_OK);
+    CHECK_INT(sc_make_renderer(ctx, (sc_scene_id){0}, &(sc_renderer_desc){.pack = pack}, &packed,
+                               &err),
+              SC_OK);
+    sc_key key;
+    int count = 0;
+    CHECK_INT(sc_query_renderer_keys(packed, &key, 1, &count, &err), SC_OK);
+    CHECK(strstr(key.text, "-ert4-") != NULL);
+    sc_camera_desc view = {.width = 96, .height = 96};
+    sc_frame_id fa, fb;
+    CHECK_INT(sc_render(direct, &view, &fa, &err), SC_OK);
+    CHECK_INT(sc_render(packed, &view, &fb, &err), SC_OK);
+    sc_frame_info ia, ib;
+    CHECK_INT(sc_query_frame_info(fa, &ia, &err), SC_OK);
+    CHECK_INT(sc_query_frame_info(fb, &ib, &err), SC_OK);
+    long hits = 0, differ = 0;
+    for (int p = 0; p < 96 * 96; p++) {
+        hits += ia.surface[p] >= 0;
+        differ += ia.surface[p] != ib.surface[p] || ia.t[p] != ib.t[p] ||
+                  memcmp(ia.rgba + 4 * p, ib.rgba + 4 * p, 4) != 0;
+    }
+    CHECK(hits > 96 * 96 / 10);
+    CHECK_INT(differ, 0);
+    sc_renderer_info info;
+    CHECK_INT(sc_query_renderer_info(packed, &info, &err), SC_OK);
+    CHECK(info.peel_layers >= 1);
+    CHECK_INT(info.readbacks, 0);
+    sc_destroy_frame(fa);
+    sc_destroy_frame(fb);
+    sc_shutdown();
+}
