@@ -281,7 +281,8 @@ static int peel_resources(sc_renderer *r, sc_error *err)
             link_compute(gl, tile_far_source, &r->tile_far_program, err) != SC_OK)
             return SC_FAIL;
         gl->GenQueries(SC_PEEL_QUERIES, r->peel_queries);
-        gl->CreateVertexArrays(1, &r->peel_vao);
+        if (!r->peel_vao)
+            gl->CreateVertexArrays(1, &r->peel_vao);
     }
     /* The slots; two compact lists and their commands, taking turns. */
     size_t nindices = (size_t)(r->hulls.nindices ? r->hulls.nindices : 1);
@@ -630,7 +631,9 @@ int sc_peel_composite(sc_renderer *r, const int viewport[4], sc_error *err)
     gl->BindTextureUnit(UNIT_PREVIOUS_ENTRY, r->target.depth);
     gl->BindTextureUnit(UNIT_BEST, r->target.colour[SCG_FRAG_OUT_COLOUR]);
     gl->Disable(GL_CULL_FACE);
-    gl->BindVertexArray(r->peel_vao ? r->peel_vao : r->vertex_array);
+    if (!r->peel_vao)   /* nothing was in view: the peeling made none */
+        gl->CreateVertexArrays(1, &r->peel_vao);
+    gl->BindVertexArray(r->peel_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     r->draw_calls++;
     return sc_gl_check(gl, "composing the frame into the application's framebuffer", err);
