@@ -74,6 +74,8 @@ static const char *ert_words(scg_ert ert)
     case SCG_ERT_BEFORE: return "early ray termination before the intersection";
     case SCG_ERT_BOTH: return "early ray termination before and after the intersection";
     case SCG_ERT_CONSERVATIVE: return "conservative depth (depth_greater)";
+    case SCG_ERT_PEEL: return "depth peeling: no depth written, the hit kept when nearer than "
+                              "the best so far";
     }
     return "?";
 }
@@ -218,7 +220,7 @@ static int fragment_slots(const scg_program *prog, const scg_program_use *use, s
     char key_text[SCG_KEY_MAX];
     scg_key_format(key, key_text, sizeof key_text);
     enum { HEADER, INPUTS, CENTRE, BASE_COLOUR, VIEW_PROJECTION, UNIFORMS, TEXTURES, OUTPUTS,
-           GLOBALS, FUNCTION, FUNCTIONS, PREPARE, RESULTS, CALL, ON_MISS, WRITE };
+           GLOBALS, FUNCTION, FUNCTIONS, PREPARE, RESULTS, CALL, ON_MISS, DEPTH, WRITE };
     decl_line line;
 
     char stage[96];
@@ -287,6 +289,28 @@ static int fragment_slots(const scg_program *prog, const scg_program_use *use, s
                         "// The hit lies on the ray behind the hull's front face: its depth is "
                         "never less\n// than the fragment's, so early depth testing may stay "
                         "on.\nlayout(depth_greater) out float gl_FragDepth;\n");
+    if (key->ert == SCG_ERT_PEEL) {
+        /* Nothing here writes gl_FragDepth, so the depth test can run
+         * before the program, and it must: the image store is a side
+         * effect, which GL otherwise keeps for fragments that fail. */
+        scg_text_printf(&parts[OUTPUTS],
+                        "// Depth peeling: the depth test (equal to this layer's hull entry) "
+                        "runs before\n// the program; the window depth of the nearest hit so "
+                        "far, per pixel.\nlayout(early_fragment_tests) in;\n"
+                        "layout(r32f, binding = %d) uniform coherent image2D %s;\n",
+                        SCG_IMAGE_BEST_DEPTH, SCG_BEST_DEPTH_NAME);
+        /* One fragment a pixel passes the test of a layer (hulls meeting at
+         * exactly the same depth aside), so the load and store do not race. */
+        scg_text_printf(&parts[DEPTH],
+                        "float sc_depth = 0.5 * (clip.z / clip.w) + 0.5;\n"
+                        "// A nearer hit of an earlier layer stays.\n"
+                        "if (sc_depth >= imageLoad(%s, ivec2(gl_FragCoord.xy)).r)\n"
+                        "    discard;\n"
+                        "imageStore(%s, ivec2(gl_FragCoord.xy), vec4(sc_depth));",
+                        SCG_BEST_DEPTH_NAME, SCG_BEST_DEPTH_NAME);
+    } else {
+        scg_text_append(&parts[DEPTH], "gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;");
+    }
 
     unsigned need = needed_results(key->outputs);
     for (int s = 0; s < SCG_OUTPUT_COUNT; s++)
@@ -363,7 +387,7 @@ int scg_emit_fragment(const scg_program *prog, scg_text *out, sc_error *err)
     static const char *const slot_names[] = {
         "HEADER", "INPUTS", "VARYING_CENTRE", "VARYING_BASE_COLOUR", "UNIFORM_VIEW_PROJECTION",
         "UNIFORMS", "TEXTURES", "OUTPUTS", "GLOBALS", "INTERSECT_FUNCTION", "FUNCTIONS",
-        "PREPARE", "RESULTS", "CALL", "ON_MISS", "WRITE_OUTPUTS"};
+        "PREPARE", "RESULTS", "CALL", "ON_MISS", "DEPTH", "WRITE_OUTPUTS"};
     enum { NSLOTS = sizeof slot_names / sizeof slot_names[0] };
     scg_program_use use;
     scg_program_scan_use(prog, &use);

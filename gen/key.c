@@ -284,8 +284,8 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
                            "tolT with T in pixel footprints, 0.001 to 1000, at most 3 decimals");
     rest = fields[8];
     int ert = -1;
-    if (strncmp(rest, "ert", 3) != 0 || (rest += 3, !read_int(&rest, &ert)) || *rest || ert > 3)
-        return field_error(err, text, 8, fields[8], "ert0, ert1, ert2 or ert3");
+    if (strncmp(rest, "ert", 3) != 0 || (rest += 3, !read_int(&rest, &ert)) || *rest || ert > 4)
+        return field_error(err, text, 8, fields[8], "ert0, ert1, ert2, ert3 or ert4");
     k.ert = (scg_ert)ert;
     if (strncmp(fields[9], "out.", 4) != 0)
         return field_error(err, text, 9, fields[9], "out. followed by shade, aov, iters, uv, hull");
@@ -353,6 +353,11 @@ int scg_key_check(const scg_key *key, sc_error *err)
                            "%s starts from the whole sub-patch and takes no start value: "
                            "write 'mid' for the start field",
                            method_names[key->method]);
+    if (key->ert == SCG_ERT_PEEL && (key->outputs & SCG_OUTPUT_HULLVIEW))
+        return sc_fail_key(err, text,
+                           "key %s: ert4 (depth peeling) writes no depth, and the hull view "
+                           "(out.hull) writes the hull face's depth where rays miss",
+                           text);
     if (missing)
         return sc_fail_key(err, text, "%s not implemented yet", missing);
     return SC_OK;

@@ -85,9 +85,18 @@ typedef enum scg_ert {
     SCG_ERT_BEFORE,           /* "ert1": skip the ray when the hull lies
                                  behind the nearest surface so far */
     SCG_ERT_BOTH,             /* "ert2": also drop a hit behind it */
-    SCG_ERT_CONSERVATIVE      /* "ert3": gl_FragDepth declared depth_greater
+    SCG_ERT_CONSERVATIVE,     /* "ert3": gl_FragDepth declared depth_greater
                                  (the hit never lies in front of the hull),
                                  so a GPU may keep its early depth test */
+    SCG_ERT_PEEL              /* "ert4": depth peeling of the hulls' entries
+                                 (runtime/gl/gl_peel.c): no gl_FragDepth, the
+                                 early fragment tests declared (the depth
+                                 test against the layer's entry depth runs
+                                 before the program); a hit is kept only
+                                 when nearer than the best so far at its
+                                 pixel (the image sc_best_depth), which it
+                                 then becomes. Not with the hull view, which
+                                 writes the hull's depth where rays miss */
 } scg_ert;
 
 /* Output bits; the text lists the set ones in this order, joined by '.'. */

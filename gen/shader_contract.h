@@ -81,6 +81,13 @@
 #define SCG_COUNTERS_BLOCK "sc_counters"
 #define SCG_COUNTER_INTERSECTIONS "sc_intersections"
 
+/* Image units: depth peeling (ert4 keys; runtime/gl/gl_peel.c) keeps, per
+ * pixel, the window depth of the nearest hit the layers drawn so far found
+ * (r32f, 1.0 where none): a layer's program keeps its hit only when it is
+ * nearer, and writes it there; the runtime's passes read it. */
+#define SCG_IMAGE_BEST_DEPTH 0
+#define SCG_BEST_DEPTH_NAME "sc_best_depth"
+
 /* Fragment outputs = the render target's colour attachments, declared when
  * the key asks for their output: X(ID, location, GLSL name, GLSL type, the
  * key's output (SCG_OUTPUT_<it>), GL internal format (GL_<it>), the value

@@ -206,7 +206,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         sc_api_check_int(d->unroll_max_degree, 0, SCG_MAX_DEGREE, "sc_renderer_desc.unroll_max_degree",
                   err) ||
         sc_api_check_enum(d->trim, SC_TRIM_NONE + 1, "sc_renderer_desc.trim", err) ||
-        sc_api_check_enum(d->termination, SC_TERMINATION_MANUAL_BOTH + 1,
+        sc_api_check_enum(d->termination, SC_TERMINATION_PEEL + 1,
                    "sc_renderer_desc.termination", err) ||
         sc_api_check_enum(d->order, SC_HULL_ORDER_HYBRID + 1, "sc_renderer_desc.order", err) ||
         sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||

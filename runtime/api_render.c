@@ -276,6 +276,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .intersect_query_ms = stats.intersect_query_ms,
         .uploaded_total_bytes = stats.bytes_uploaded_total,
         .qhull_hulls = stats.qhull_hulls,
+        .peel_layers = stats.peel_layers,
     };
     if (!sc_scene_view_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi))
         sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);

@@ -36,6 +36,10 @@
 {{VARYING_CENTRE}}
 {{VARYING_BASE_COLOUR}}
 
+// Depth peeling draws the hulls again with another program and tests their
+// depth for equality: gl_Position must come out bit for bit the same.
+invariant gl_Position;
+
 void main()
 {
     sc_centre = texelFetch(sc_records, {{RECORD_TEXELS}} * sc_hull_record + 3).xyz;

@@ -31,6 +31,6 @@ void main()
     // The projection is the camera's moved to the origin (hull.vert). The
     // depth range is the default [0, 1] (gl_DepthRange is not in SPIR-V).
     vec4 clip = sc_view_projection * vec4(point - sc_ray_origin, 1.0);
-    gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+    {{DEPTH}}
     {{WRITE_OUTPUTS}}
 }

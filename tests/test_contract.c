@@ -100,16 +100,26 @@ static int declares(const declaration *d, const scg_slot_info *table, int entrie
 static int check_stage(const char *glsl, int fragment, unsigned *frag_outs, int varyings[16])
 {
     const char *stage = fragment ? "frag" : "vert";
+    int binding = -1;
     for (const char *line = glsl; *line;) {
         const char *end = strchr(line, '\n');
         size_t len = end ? (size_t)(end - line) : strlen(line);
         char buf[256];
         snprintf(buf, sizeof buf, "%.*s", (int)(len < 255 ? len : 255), line);
         line += len + (end != NULL);
-        if (strncmp(buf, "layout(", 7) || !strncmp(buf, "layout(depth_greater)", 21))
+        if (strncmp(buf, "layout(", 7) || !strncmp(buf, "layout(depth_greater)", 21) ||
+            (fragment && !strcmp(buf, "layout(early_fragment_tests) in;")))
             continue;
+        /* Depth peeling's image of the best hit so far: fragment stage only. */
+        char image[64] = "";
+        if (sscanf(buf, "layout(r32f, binding = %d) uniform coherent image2D %63[a-z_0-9];", &binding,
+                   image) == 2) {
+            if (fragment && binding == SCG_IMAGE_BEST_DEPTH && !strcmp(image, SCG_BEST_DEPTH_NAME))
+                continue;
+            fprintf(stderr, "  %s: not in the contract: %s\n", stage, buf);
+            return 0;
+        }
         /* The counters' block: fragment stage only, its binding and names. */
-        int binding = -1;
         char block[64] = "";
         if (sscanf(buf, "layout(std430, binding = %d) buffer %63[a-z_0-9] {", &binding, block) == 2) {
             if (fragment && binding == SCG_BUFFER_COUNTERS && !strcmp(block, SCG_COUNTERS_BLOCK))
@@ -161,6 +171,8 @@ TEST(contract_generated_glsl_declares_only_the_contract)
         "bez2x2-rat-dc-trim0-newton-cp-it4-tol0.25-ert1-out.hull",
         "bez3x3-poly-bern-trim0-newton-mid-it4-tol0.25-ert3-out.aov.uv",
         "nurbs2x2-rat-dc-trim0-newton-mid-it4-tol0.25-ert2-out.shade",
+        /* depth peeling: the image of the best hit so far */
+        "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert4-out.shade.aov",
         "bezdyn-poly-loop-trim0-newton-cp-it4-tol0.25-ert0-out.iters",
         /* the vertex stage's solve of the view start */
         "nurbs2x3-rat-dc-trim0-hybrid-view-it3-tol0.25-ert1-out.shade",

@@ -180,7 +180,7 @@ TEST(ert_turned_away_draws_nothing)
     CHECK_INT(sc_read_scene(scene_path("stack_4.obj"), &scene, &err), SC_OK);
     sc_camera away = stack_camera;
     away.target[2] = 2 * away.eye[2];  /* looking up +z, the stack behind */
-    for (int ert = SC_TERMINATION_NONE; ert <= SC_TERMINATION_MANUAL_BOTH; ert++) {
+    for (int ert = SC_TERMINATION_NONE; ert <= SC_TERMINATION_PEEL; ert++) {
         sc_render_desc desc = {.ert = (sc_ray_termination)ert};
         for (int look = 0; look < 2; look++) {
             sc_aov aov;
@@ -351,7 +351,7 @@ TEST(ert_eye_inside_hull)
 TEST(ert_names)
 {
     sc_ray_termination mode;
-    for (int m = SC_TERMINATION_NONE; m <= SC_TERMINATION_MANUAL_BOTH; m++) {
+    for (int m = SC_TERMINATION_NONE; m <= SC_TERMINATION_PEEL; m++) {
         CHECK_INT(cli_termination_parse(cli_termination_name((sc_ray_termination)m), &mode, NULL), SC_OK);
         CHECK_INT(mode, m);
     }

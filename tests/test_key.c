@@ -115,7 +115,7 @@ TEST(key_malformed_refused)
         /* Just above the range, in the whole part and in the fraction. */
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1001-ert0-out.shade", "0.001 to 1000"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1000.001-ert0-out.shade", "0.001 to 1000"},
-        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert4-out.shade", "ert0, ert1, ert2 or ert3"},
+        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert5-out.shade", "ert0, ert1, ert2, ert3 or ert4"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.", "outputs"},
         {"bez3x3-poly-loop-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},
         {"bezdyn-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},

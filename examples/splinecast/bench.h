@@ -34,7 +34,7 @@ void bench_print(const char *variant, const char *extra, const bench_result *r);
 typedef struct bench_sweep {
     const char *scenes[32];
     int nscenes;
-    sc_ray_termination erts[4];
+    sc_ray_termination erts[5];
     int nerts;
     sc_hull_order orders[3];
     int norders;

@@ -75,12 +75,13 @@ void bench_print(const char *variant, const char *extra, const bench_result *r)
     printf("bench variant=%s%s frame_ms=%.2f mpix_s=%.2f covered=%ld iters_mean=%.3f "
            "gpu_bytes=%zu programs=%d hulls=%d triangles=%d compile_ms=%.1f "
            "compile_ms_per_program=%.1f draw_calls=%d program_switches=%d culled_hulls=%d "
-           "readbacks=%d intersections=%lld rays_per_covered_pixel=%.3f\n",
+           "readbacks=%d intersections=%lld rays_per_covered_pixel=%.3f peel_layers=%d\n",
            variant, extra, r->frame_ms, r->mpix_s, r->covered, r->iters_mean,
            r->stats.gpu_bytes, r->stats.programs, r->stats.hulls, r->stats.triangles,
            r->compile_ms, r->stats.programs ? r->compile_ms / r->stats.programs : 0,
            r->stats.draw_calls, r->stats.program_switches, r->stats.culled_hulls,
            r->stats.readbacks, r->stats.intersections,
-           r->covered ? (double)r->stats.intersections / (double)r->covered : 0.0);
+           r->covered ? (double)r->stats.intersections / (double)r->covered : 0.0,
+           r->stats.peel_layers);
     fflush(stdout);
 }

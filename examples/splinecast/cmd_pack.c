@@ -27,7 +27,7 @@ static const char usage[] =
     "  --init START       mid, cpmap (cpmap)\n"
     "  --method M         newton, bclip, subdiv, hybrid (hybrid)\n"
     "  --trim T[:N]       fast, clip, left; N clipping iterations (fast:16)\n"
-    "  --ert MODE         none, conservative, manual, manual-both (manual)\n"
+    "  --ert MODE         none, conservative, manual, manual-both, peel (manual)\n"
     "  --view V           shade, uv, iters, normal, depth, hull (shade)\n"
     "\n";
 

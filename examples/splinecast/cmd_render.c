@@ -40,12 +40,13 @@ static const char usage[] =
     "                         misses the surface\n"
     "  --trim clip|left|fast[:ITERS]   trim method of trimmed surfaces and its cap\n"
     "                         on clipping iterations per crossing (default fast:16)\n"
-    "  --ert none|conservative|manual|manual-both   early ray termination\n"
+    "  --ert none|conservative|manual|manual-both|peel   early ray termination\n"
     "                         (default manual)\n"
     "  --order front-to-back|by-program|hybrid   draw order (default hybrid)\n"
     "  --batch N              hulls per batch, each seeing the hits of those\n"
-    "                         before it (manual early ray termination), and per\n"
-    "                         hybrid bucket\n"
+    "                         before it (manual early ray termination), the\n"
+    "                         first of peel's doubling batches, and per hybrid\n"
+    "                         bucket\n"
     "                         (default 32)\n"
     "  --accuracy PX[,DEG]    choose each surface's hulls, iterations and\n"
     "                         tolerance from a bound on the position error in\n"
@@ -58,7 +59,7 @@ static const char usage[] =
     "\n"
     "stdout: stats programs=N hulls=N triangles=N gpu_bytes=N compile_ms=T frame_ms=T\n"
     "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
-    "        intersections=N rays_per_covered_pixel=X\n"
+    "        intersections=N rays_per_covered_pixel=X peel_layers=N\n"
     "        (intersections: fragment programs that ran the intersection in the\n"
     "        last frame, counted on the GPU, over the pixels that hit a surface;\n"
     "        frame_ms: median of the timed frames; compile_ms: generating,\n"
@@ -277,10 +278,11 @@ int cmd_render(int argc, char **argv)
     double compile_ms = stats.compile_ms + (warm_up > frame_ms ? warm_up - frame_ms : 0);
     printf("stats programs=%d hulls=%d triangles=%d gpu_bytes=%zu compile_ms=%.1f "
            "frame_ms=%.2f draw_calls=%d program_switches=%d culled_hulls=%d readbacks=%d "
-           "intersections=%lld rays_per_covered_pixel=%.3f\n",
+           "intersections=%lld rays_per_covered_pixel=%.3f peel_layers=%d\n",
            stats.programs, stats.hulls, stats.triangles, stats.gpu_bytes, compile_ms, frame_ms,
            stats.draw_calls, stats.program_switches, stats.culled_hulls, stats.readbacks,
-           stats.intersections, covered ? (double)stats.intersections / (double)covered : 0.0);
+           stats.intersections, covered ? (double)stats.intersections / (double)covered : 0.0,
+           stats.peel_layers);
     fflush(stdout);
     if (with_ref) {
         double ref_t0 = sc_now();

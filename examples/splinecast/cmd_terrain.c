@@ -30,7 +30,7 @@ static const char usage[] =
     "  --iters N              Newton iterations at most (default 6)\n"
     "  --tol PX               tolerance in pixel footprints (default 0.05)\n"
     "  --view shade|uv|iters|normal|depth|hull|reflect   what the PNG shows (default shade)\n"
-    "  --ert none|conservative|manual|manual-both   early ray termination\n"
+    "  --ert none|conservative|manual|manual-both|peel   early ray termination\n"
     "                         (default manual)\n"
     "  --order front-to-back|by-program|hybrid   draw order instead of the\n"
     "                         Manhattan sets (default: the sets)\n"

@@ -22,7 +22,8 @@ static const spelling trims[] = {
     {"clip", SC_TRIM_CLIP}, {"left", SC_TRIM_LEFT}, {"fast", SC_TRIM_FAST}};
 static const spelling terminations[] = {
     {"none", SC_TERMINATION_NONE}, {"conservative", SC_TERMINATION_CONSERVATIVE},
-    {"manual", SC_TERMINATION_MANUAL}, {"manual-both", SC_TERMINATION_MANUAL_BOTH}};
+    {"manual", SC_TERMINATION_MANUAL}, {"manual-both", SC_TERMINATION_MANUAL_BOTH},
+    {"peel", SC_TERMINATION_PEEL}};
 static const spelling orders[] = {
     {"front-to-back", SC_HULL_ORDER_FRONT_TO_BACK}, {"by-program", SC_HULL_ORDER_BY_PROGRAM},
     {"hybrid", SC_HULL_ORDER_HYBRID}};
@@ -96,7 +97,7 @@ int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *e
     int i = lookup(terminations, COUNT(terminations), text, strlen(text));
     if (i < 0)
         return fail(err, "unknown early ray termination '%s' "
-                         "(none, conservative, manual or manual-both)", text);
+                         "(none, conservative, manual, manual-both or peel)", text);
     *out = (sc_ray_termination)terminations[i].value;
     return SC_OK;
 }

@@ -71,8 +71,14 @@ typedef enum sc_ray_termination {
     SC_TERMINATION_MANUAL,      /* the intersection is skipped behind the
                                    nearest hit so far, and whole hulls behind
                                    it are culled between batches */
-    SC_TERMINATION_MANUAL_BOTH  /* also a hit behind it is dropped before
+    SC_TERMINATION_MANUAL_BOTH, /* also a hit behind it is dropped before
                                    trimming and shading */
+    SC_TERMINATION_PEEL         /* depth peeling of the hulls' entries: each
+                                   layer a depth pre-pass, then the
+                                   intersection only where the depth test
+                                   finds this layer's hull in front (ert4),
+                                   while a pixel's hit lies behind a hull
+                                   entry; decided on the GPU, no read-back */
 } sc_ray_termination;
 
 /* What the image shows. shade, uv, iters and hull come from the programs;

@@ -113,9 +113,35 @@ int sc_renderer_draw_app(sc_renderer *r, const float view[16], const float proj[
     gl->DepthMask(GL_TRUE);
     gl->Disable(GL_BLEND);
     gl->PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    if (manual_ert(r->desc.ert))
-        far_nearest_texture(r, vw, vh);
-    int status = sc_render_hulls(r, eye, fwd, vp, footprint, 0, err);
+    int status;
+    if (r->desc.ert == SC_TERMINATION_PEEL) {
+        /* Peeling needs depth buffers of its own: the frame is peeled in
+         * the renderer's target at the viewport's size, then its colour
+         * and depth are composed into the application's framebuffer under
+         * its depth test. */
+        memcpy(r->camera.eye, eye, sizeof r->camera.eye);
+        r->camera.width = vw;
+        r->camera.height = vh;
+        status = sc_render_begin_target(r, vw, vh, err);
+        if (status == SC_OK)
+            status = sc_render_hulls(r, eye, fwd, vp, footprint, 1, err);
+        gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)saved.draw_framebuffer);
+        gl->Viewport(saved.viewport[0], saved.viewport[1], vw, vh);
+        if (saved.framebuffer_srgb)
+            gl->Enable(GL_FRAMEBUFFER_SRGB);
+        else
+            gl->Disable(GL_FRAMEBUFFER_SRGB);
+        sc_gl_state_first_draw_buffer(gl, &saved);
+        gl->Enable(GL_DEPTH_TEST);
+        gl->DepthFunc(GL_LESS);
+        gl->DepthMask(GL_TRUE);
+        if (status == SC_OK)
+            status = sc_peel_composite(r, saved.viewport, err);
+    } else {
+        if (manual_ert(r->desc.ert))
+            far_nearest_texture(r, vw, vh);
+        status = sc_render_hulls(r, eye, fwd, vp, footprint, 0, err);
+    }
     sc_gl_state_restore(gl, &saved);
     if (status != SC_OK)
         return SC_FAIL;

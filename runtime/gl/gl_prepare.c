@@ -462,6 +462,7 @@ void sc_renderer_destroy(sc_renderer *r)
         gl->DeleteVertexArrays(1, &r->vertex_array);
     if (r->deferred_program)
         gl->DeleteProgram(r->deferred_program);
+    sc_peel_destroy(r);
     if (r->own_programs)
         sc_program_cache_destroy(r->programs);
     sc_hulls_free(&r->hulls);
@@ -550,6 +551,7 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->program_switches = r->program_switches;
     stats->culled_hulls = r->culled;
     stats->readbacks = r->readbacks;
+    stats->peel_layers = r->peel_layers;
     stats->intersections = 0;
     if (r->counter_buffer) {
         GLuint count = 0;

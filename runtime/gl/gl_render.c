@@ -98,7 +98,10 @@ static void order_hulls(sc_renderer *r, int n)
     sort_item *items = r->items;
     qsort(items, (size_t)n, sizeof *items, by_order);
     /* Manhattan sets (major: the set) are in order already: one program. */
-    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK || r->manhattan)
+    /* Depth peeling draws in batches front to back (gl_peel.c) and groups
+     * each batch's hulls by program on the GPU. */
+    if (r->desc.order == SC_HULL_ORDER_FRONT_TO_BACK || r->desc.ert == SC_TERMINATION_PEEL ||
+        r->manhattan)
         return;
     /* By program: the programs in the order of their nearest hull, front to
      * back within one. Hybrid: the same within each bucket of batch_hulls
@@ -167,7 +170,7 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
             *current = program;
             r->program_switches++;
         }
-        gl->CullFace(run->inside ? GL_FRONT : GL_BACK);
+        gl->CullFace(run->inside == 1 ? GL_FRONT : GL_BACK);
         gl->DrawElements(GL_TRIANGLES, run->count, GL_UNSIGNED_INT,
                          (const void *)((size_t)run->first * sizeof(uint32_t)));
         r->draw_calls++;
@@ -338,33 +341,21 @@ static int make_nearest_texture(sc_renderer *r, sc_error *err)
     return sc_gl_check(gl, "creating the nearest distances", err);
 }
 
-int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
+int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err)
 {
     const sc_gl *gl = r->gl;
     int manual = manual_ert(r->desc.ert);
     GLenum formats[SC_GL_TARGET_MAX_COLOURS];
     target_formats(&r->desc, formats);
-    if (r->target.width != cam->width || r->target.height != cam->height) {
+    if (r->target.width != width || r->target.height != height) {
         sc_gl_target_destroy(gl, &r->target);
-        sc_gl_target_desc td = {.width = cam->width, .height = cam->height};
+        sc_gl_target_desc td = {.width = width, .height = height};
         memcpy(td.formats, formats, sizeof td.formats);
         if (sc_gl_target_create(gl, &td, &r->target, err) != SC_OK ||
             (manual && make_nearest_texture(r, err) != SC_OK))
             return SC_FAIL;
         r->cosine_fovy = 0;
     }
-    r->camera = *cam;
-    double fwd[3], right[3], up[3];
-    sc_camera_frame(cam, fwd, right, up);
-    double znear, zfar;
-    depth_range(r, cam->eye, fwd, &znear, &zfar);
-    r->znear = znear;
-    r->zfar = zfar;
-    float view[16], proj[16], vp[16];
-    sc_camera_gl_matrices(cam, znear, zfar, view, proj);
-    sc_render_eye_projection(view, proj, vp);
-    float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
-
     float bg = background_linear();
     float clear[SC_GL_TARGET_MAX_COLOURS][4] = {{0}};
     unsigned uncleared = 0;  /* read only at hits: 32 of the 56 bytes a pixel */
@@ -377,8 +368,27 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     /* Before the clear, so that the background is encoded like the rest. */
     gl->Enable(GL_FRAMEBUFFER_SRGB);
     sc_gl_target_begin(gl, &r->target, clear, uncleared);
+    return SC_OK;
+}
+
+int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
+{
+    const sc_gl *gl = r->gl;
+    if (sc_render_begin_target(r, cam->width, cam->height, err) != SC_OK)
+        return SC_FAIL;
+    r->camera = *cam;
+    double fwd[3], right[3], up[3];
+    sc_camera_frame(cam, fwd, right, up);
+    double znear, zfar;
+    depth_range(r, cam->eye, fwd, &znear, &zfar);
+    r->znear = znear;
+    r->zfar = zfar;
+    float view[16], proj[16], vp[16];
+    sc_camera_gl_matrices(cam, znear, zfar, view, proj);
+    sc_render_eye_projection(view, proj, vp);
+    float footprint = (float)(2.0 * tan(0.5 * cam->fovy_deg * M_PI / 180.0) / cam->height);
     r->time_hulls = r->desc.time_intersection;
-    int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, manual, err);
+    int status = sc_render_hulls(r, cam->eye, fwd, vp, footprint, 1, err);
     r->time_hulls = 0;
     if (status == SC_OK && r->desc.deferred && r->scene->terrain &&
         r->desc.view == SC_SHOW_SHADE)
@@ -387,6 +397,11 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
     gl->Finish();
     if (status != SC_OK)
         return SC_FAIL;
+    sc_peel_finish(r);
+    if (r->peel_pending)
+        sc_log(SC_LOG_WARN, "depth peeling stopped after %d layers with %lld hull fragments "
+               "still in front of their pixels' hits: those pixels keep the best hit found",
+               SC_PEEL_MAX_LAYERS, r->peel_pending);
     return sc_gl_check(gl, "drawing the hulls", err);
 }
 
@@ -408,11 +423,12 @@ void sc_render_eye_projection(const float view[16], const float proj[16], float 
 }
 
 int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[3],
-                    const float vp[16], float footprint, int manual, sc_error *err)
+                    const float vp[16], float footprint, int own_target, sc_error *err)
 {
     const sc_gl *gl = r->gl;
     if (sc_renderer_send_updates(r, err) != SC_OK)
         return SC_FAIL;
+    int manual = own_target && manual_ert(r->desc.ert);
     float eye[3], eye_low[3], raster_eye[3];
     for (int c = 0; c < 3; c++) {
         eye[c] = (float)eye_world[c];
@@ -445,6 +461,18 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     for (int i = 0; i < ninside; i++)
         if (r->desc.ert != SC_TERMINATION_NONE &&
             inside_program(r, r->hull_group[r->inside[i]], err) != SC_OK)
+            return SC_FAIL;
+    /* Depth peeling needs the renderer's own target and no hull holding the
+     * eye (whose entry is the eye itself, behind every other hull's); else
+     * the frame falls back to drawing every hull with the `inside`
+     * programs (ert0): no early termination, the same image. */
+    int peeling = r->desc.ert == SC_TERMINATION_PEEL;
+    int peel = peeling && own_target && !ninside;
+    r->peel_fallback = peeling && !peel;
+    r->peel_batches = r->peel_layers = 0;
+    r->peel_pending = 0;
+    for (int i = 0; r->peel_fallback && i < n; i++)
+        if (inside_program(r, r->hull_group[r->items[i].hull], err) != SC_OK)
             return SC_FAIL;
 
     gl->Enable(GL_DEPTH_TEST);
@@ -492,6 +520,15 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
         gl->BeginQuery(GL_TIME_ELAPSED, r->time_query);
     }
     GLuint current = 0;
+    if (peel) {
+        int status = sc_peel_draw(r, n, vp, raster_eye, &current, err);
+        if (r->timed) {
+            gl->EndQuery(GL_TIME_ELAPSED);
+            gl->Finish();
+            r->intersect_ms = 1e3 * (sc_now() - t0);
+        }
+        return status;
+    }
     int nruns = 0, nidx = 0;
     for (int g = 0; g < r->ngroups; g++)
         for (int i = 0; i < ninside; i++)
@@ -516,7 +553,7 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
                 culled++;
                 continue;
             }
-            append_hull(r, &nruns, &nidx, k, 0);
+            append_hull(r, &nruns, &nidx, k, r->peel_fallback ? 2 : 0);
             drawn++;
         }
         r->culled += culled;

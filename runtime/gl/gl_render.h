@@ -38,6 +38,8 @@ typedef struct sc_render_desc {
     int batch_hulls;        /* hulls per batch in the manual modes (a batch
                                reads the hits of the batches before it;
                                doubling after a batch that culled no hull),
+                               the first of depth peeling's batches (which
+                               double),
                                and per bucket of the hybrid order
                                (SC_RENDER_DEFAULT_BATCH_HULLS) */
     sc_program_cache *programs; /* the cache to take programs from, shared
@@ -99,6 +101,9 @@ typedef struct sc_render_stats {
                                binning of the draws, not their raster) */
     size_t bytes_uploaded_total; /* since creation, creation included */
     long long qhull_hulls;  /* hulls qhull made (sc_hulls.qhull_pieces) */
+    int peel_layers;        /* depth peeling: the layers that found hull
+                               entries in front of a pixel's best hit (0
+                               when the frame did not peel) */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;

@@ -55,6 +55,15 @@ static inline unsigned view_image_output(sc_show view)
     }
 }
 
+/* Depth peeling's most layers a batch: a pixel whose ray enters more hulls
+ * of a batch in front of its hit keeps the best hit of these
+ * (docs/runtime.md). */
+#define SC_PEEL_MAX_LAYERS 16
+/* Batches of hulls peeled one after the other, front to back, doubling
+ * from batch_hulls; the last takes what is left. */
+#define SC_PEEL_MAX_BATCHES 12
+#define SC_PEEL_QUERIES (SC_PEEL_MAX_BATCHES * (SC_PEEL_MAX_LAYERS + 1))
+
 static inline int manual_ert(sc_ray_termination mode)
 {
     return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
@@ -85,7 +94,9 @@ typedef struct group {
 /* One draw call of a frame. */
 typedef struct draw_run {
     int group;
-    int inside;              /* hulls holding the eye: back faces, `inside` program */
+    int inside;              /* 1: hulls holding the eye: back faces, `inside`
+                                program; 2: front faces, `inside` program
+                                (depth peeling's frames that fall back) */
     int first, count;        /* range of the frame's index buffer */
 } draw_run;
 
@@ -174,6 +185,30 @@ struct sc_renderer {
     sc_scene *own_scene;     /* a packed renderer's stand-in scene (gl_pack.c):
                                 its surfaces' colours alone */
     GLuint deferred_program; /* gl_deferred.c's, made on first use */
+    /* Depth peeling (gl_peel.c): the layers' entry depths (R32F, taking
+     * turns) with their framebuffers (and the target's depth), the best hit
+     * so far (R32F image), one query per layer and one past the last, the
+     * pre-pass and resolve programs; made on first use. */
+    GLuint peel_entry[2], peel_fb[2], peel_best, peel_depth;
+    GLuint peel_queries[SC_PEEL_QUERIES];
+    GLuint peel_program, resolve_program, composite_program, peel_vao;
+    /* Its culling: the compute programs, the tiles with work (r32ui) and
+     * the farthest best hit per tile (r32f), the buffers (slots; two
+     * compact index lists; their commands) and their CPU sides (gl_peel.c's
+     * peel_slot and peel_command). */
+    GLuint cull_program, tile_far_program, peel_pending_tiles, peel_tile_far, peel_buffers[5];
+    void *peel_slots, *peel_commands;
+    size_t peel_capacity;
+    int peel_w, peel_h;
+    int peel_batches;        /* of the last frame: batches peeled (0: not peeled) */
+    int peel_issued[SC_PEEL_MAX_BATCHES]; /* its layers issued per batch (one
+                                more: the count past the last layer) */
+    int peel_layers;         /* of the last frame: layers that found work,
+                                summed over the batches */
+    long long peel_pending;  /* of the last frame: hull fragments still in
+                                front of their pixel's best hit after the
+                                last layer (0 unless the layers ran out) */
+    int peel_fallback;       /* the last frame fell back (gl_render.c) */
 };
 
 /* ---- preparation steps gl_prepare.c and gl_pack.c share ---- */
@@ -208,11 +243,29 @@ void sc_render_eye_projection(const float view[16], const float proj[16], float 
 /* Draws every hull into the bound framebuffer with the depth test, the
  * programs' uniforms set from the eye (world space, double), vp
  * (sc_render_eye_projection) and footprint (2·tan(fovy/2) / image height);
- * fwd is the view direction. manual: batches that read back the nearest
- * distances between them (the renderer's own target only). gl_render.c's
- * frames and gl_embed.c's draws into an application's framebuffer. */
+ * fwd is the view direction. own_target: the renderer's own target is
+ * bound, so the manual modes read back the nearest distances between
+ * batches and depth peeling peels (gl_render.c's frames; not gl_embed.c's
+ * draws into an application's framebuffer). */
 int sc_render_hulls(sc_renderer *r, const double eye[3], const double fwd[3], const float vp[16],
-                    float footprint, int manual, sc_error *err);
+                    float footprint, int own_target, sc_error *err);
+
+/* The renderer's own target at width × height (made again when the size
+ * changed), bound and cleared, GL_FRAMEBUFFER_SRGB enabled. */
+int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err);
+
+/* Depth peeling (gl_peel.c): draws r->items[0, n) (no hull holding the
+ * eye) into the renderer's own target, bound, with the frame's uniforms
+ * set; vp and raster_eye for the pre-pass. */
+int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_eye[3],
+                 GLuint *current, sc_error *err);
+/* After the frame was waited for: its layers and what was left pending. */
+void sc_peel_finish(sc_renderer *r);
+void sc_peel_destroy(sc_renderer *r);
+/* Into the bound framebuffer (an application's) at viewport (x, y, w, h):
+ * the colour and depth of the renderer's target (its last frame, w × h)
+ * wherever it holds a hit, under the depth test the caller set. */
+int sc_peel_composite(sc_renderer *r, const int viewport[4], sc_error *err);
 
 /* sRGB 0.2, the reference images' background (shade.c), in linear light:
  * the colour attachment is sRGB, so the GL encodes it on the way in. */

@@ -7,7 +7,7 @@
 
 #include "gl_loader.h"
 
-enum { SC_GL_STATE_UNITS = 5, SC_GL_STATE_DRAW_BUFFERS = 8 };
+enum { SC_GL_STATE_UNITS = 7, SC_GL_STATE_DRAW_BUFFERS = 8 };
 
 typedef struct sc_gl_state {
     GLint program, vertex_array, active_texture;

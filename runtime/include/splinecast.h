@@ -461,7 +461,9 @@ typedef struct sc_renderer_desc {
     sc_hull_order order;
     int batch_hulls;           /* hulls per batch in the manual termination
                                   modes (a batch sees the hits of those
-                                  before it) and per hybrid bucket (32) */
+                                  before it), the first of depth peeling's
+                                  doubling batches, and per hybrid bucket
+                                  (32) */
     size_t gpu_memory_budget;  /* most bytes of GPU data (patch data, hulls,
                                   colours: sc_renderer_info.gpu_bytes) the
                                   renderer may upload; a scene that needs
@@ -575,6 +577,10 @@ typedef struct sc_renderer_info {
                                   since that neither kept their triangles
                                   nor got a small incremental hull (flat
                                   pieces) */
+    int peel_layers;           /* of the last frame, depth peeling
+                                  (SC_TERMINATION_PEEL): the layers that
+                                  found hull entries in front of a pixel's
+                                  best hit; 0 when it did not peel */
 } sc_renderer_info;
 
 int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_error *err);

@@ -32,6 +32,7 @@ scg_ert sc_key_ert(sc_ray_termination termination)
     case SC_TERMINATION_CONSERVATIVE: return SCG_ERT_CONSERVATIVE;
     case SC_TERMINATION_MANUAL: return SCG_ERT_BEFORE;
     case SC_TERMINATION_MANUAL_BOTH: return SCG_ERT_BOTH;
+    case SC_TERMINATION_PEEL: return SCG_ERT_PEEL;
     default: return SCG_ERT_NONE;
     }
 }

@@ -37,6 +37,10 @@ layout(location = 4) flat out int sc_record;
 layout(location = 8) flat out vec3 sc_centre;
 layout(location = 9) flat out vec3 sc_base_colour;
 
+// Depth peeling draws the hulls again with another program and tests their
+// depth for equality: gl_Position must come out bit for bit the same.
+invariant gl_Position;
+
 void main()
 {
     sc_centre = texelFetch(sc_records, 4 * sc_hull_record + 3).xyz;
