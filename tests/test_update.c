@@ -375,7 +375,7 @@ enum { PATCH_BYTES = 16 * 16 + 4 * 16, VERTEX_BYTES = 13 * 4 };
  * afresh from the moved scene — and sent every surface's patch data and
  * each hull vertex at most once (not once per surface whose hulls changed
  * number, as the later ones move), from a whole close-up too. */
-TEST(gl_render_update_every_surface)
+static void update_every_surface(sc_ray_termination ert)
 {
     const char *why;
     sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
@@ -394,7 +394,7 @@ TEST(gl_render_update_every_surface)
     sc_camera close = cam;
     close.fovy_deg /= 4;
     sc_renderer *r;
-    CHECK_INT(sc_renderer_create(gl, &scene, NULL, &r, &err), SC_OK);
+    CHECK_INT(sc_renderer_create(gl, &scene, &(sc_render_desc){.ert = ert}, &r, &err), SC_OK);
     if (test_failed_flag)
         return;
     wave w;
@@ -428,6 +428,12 @@ TEST(gl_render_update_every_surface)
     wave_free(&w);
     sc_scene_free(&scene);
 }
+
+TEST(gl_render_update_every_surface) { update_every_surface(0); }
+
+/* The same with depth peeling, whose culling on the GPU reads the hulls'
+ * slots each frame: moved hulls must be culled where they are now. */
+TEST(gl_render_update_every_surface_peel) { update_every_surface(SC_TERMINATION_PEEL); }
 
 /* What surface updates send is what changed: 1, 4 and then all 32 surfaces
  * of the teapot lifted (their hulls keep their counts) send exactly their
