@@ -91,7 +91,11 @@ TEST(peak_line)
     CHECK_INT(line ? sscanf(line, "peak gflops=%lf achieved_gflops=%lf fraction=%lf", &g, &a, &f)
                    : 0, 3);
     CHECK(g > 0 && a > 0);
-    CHECK_NEAR(f, a / g, 0.002);
+    /* The three are printed to 0.1, 0.1 and 0.001: the fraction agrees with
+     * their quotient within what that rounding can move it (a small peak
+     * under load moves it most). */
+    double rounding = g > 0 ? 0.0005 + 0.05 / g + (a + 0.05) * 0.05 / (g * (g - 0.05)) : 0;
+    CHECK_NEAR(f, a / g, rounding + 1e-9);
     const char *pp = line ? strstr(line, "flops_per_covered_pixel=") : NULL;
     CHECK(pp && sscanf(pp, "flops_per_covered_pixel=%lf", &per_pixel) == 1 && per_pixel > 0);
     free(out);
