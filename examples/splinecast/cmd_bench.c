@@ -20,7 +20,7 @@
 #include "options.h"
 
 static const char usage[] =
-    "usage: splinecast bench [SCENE] [options]\n"
+    "usage: splinecast bench [SCENE...] [options]\n"
     "\n"
     "Times the GPU path on SCENE (default: the embedded teapot) and prints one\n"
     "line per program variant:\n"
@@ -29,7 +29,16 @@ static const char usage[] =
     "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
     "        intersections=N rays_per_covered_pixel=X\n"
     "and the ratio of the two frame times. frame_ms is the median of the timed\n"
-    "frames after a warm-up frame; mpix_s counts covered pixels only.\n"
+    "frames after a warm-up frame; mpix_s counts covered pixels only. Then what\n"
+    "the scene cost before its first frame:\n"
+    "  bench scene=PATH read_ms=R prepare_ms=P peak_rss_mb=M gpu_bytes=B hulls=H\n"
+    "        triangles=T\n"
+    "(prepare_ms: making the renderer, programs included; peak_rss_mb: the\n"
+    "process's peak resident memory so far). Several SCENEs (without the sweep\n"
+    "options below): each timed with the specialized programs alone, its two\n"
+    "lines, then per scene after the first\n"
+    "  bench scene=PATH mpix_s_ratio_first_over_this=R\n"
+    "(the cost per covered pixel against the first scene's).\n"
     "\n"
     "options:\n"
     "  --backend egl|osmesa   GL context (default: EGL, falling back to OSMesa)\n"
@@ -157,6 +166,42 @@ static int bench_degrees(sc_context_id ctx, sc_renderer_desc desc, int lo, int h
     return 0;
 }
 
+/* Several scenes, each read and timed in turn with the specialized
+ * programs alone (the generic comparison is the one-scene mode's): its
+ * `bench variant=specialized` and `bench scene=` lines, then each scene's
+ * covered-pixel rate against the first's, so that the cost per covered
+ * pixel of a large scene is compared with a small one's in one run. */
+static int bench_scenes(sc_context_id ctx, const char *const *paths, int count,
+                        sc_renderer_desc desc, const sc_camera_desc *cam, int frames)
+{
+    double *mpix_s = calloc((size_t)count, sizeof *mpix_s);
+    int status = 0;
+    for (int i = 0; i < count && !status; i++) {
+        sc_scene_id scene;
+        sc_error err = {0};
+        bench_result result;
+        double t_read = sc_now();
+        if (sc_make_scene(&(sc_scene_desc){.path = paths[i]}, &scene, &err) != SC_OK) {
+            status = cli_report(&err);
+            break;
+        }
+        double read_ms = 1e3 * (sc_now() - t_read);
+        if (bench_run(ctx, scene, &desc, cam, frames, &result, &err) != SC_OK) {
+            status = cli_report(&err);
+        } else {
+            bench_print("specialized", "", &result);
+            bench_print_scene(paths[i], read_ms, &result);
+            mpix_s[i] = result.mpix_s;
+        }
+        sc_destroy_scene(scene);
+    }
+    for (int i = 1; i < count && !status; i++)
+        printf("bench scene=%s mpix_s_ratio_first_over_this=%.2f\n", paths[i],
+               mpix_s[i] > 0 ? mpix_s[0] / mpix_s[i] : 0.0);
+    free(mpix_s);
+    return status;
+}
+
 int cmd_bench(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
@@ -253,8 +298,9 @@ int cmd_bench(int argc, char **argv)
         }
     }
     int sweeping = sweep.nerts || sweep.norders || sweep.nbatches;
-    if (sweep.nscenes > 1 && !sweeping)
-        return cli_usage_error("bench", "several scenes need --ert, --order or --batch");
+    if (sweep.nscenes > 1 && (peak || ntargets || nmethods > 1 || deg_lo))
+        return cli_usage_error("bench", "several scenes go with --ert, --order, --batch or "
+                                        "none of the other modes");
     sc_context_id ctx;
     sc_context_info ctx_info;
     if (sc_make_context(&ctx_desc, &ctx, &err) != SC_OK ||
@@ -275,16 +321,25 @@ int cmd_bench(int argc, char **argv)
         sc_destroy_context(ctx);
         return status;
     }
+    sc_camera_desc cam = {.width = width, .height = height, .text = camera_arg};
+    if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
+        sc_destroy_context(ctx);
+        return cli_usage_error("bench", "--camera: %s", err.message);
+    }
+    if (sweep.nscenes > 1) {
+        status = bench_scenes(ctx, sweep.scenes, sweep.nscenes, desc, &cam, frames);
+        sc_destroy_context(ctx);
+        return status;
+    }
     sc_scene_id scene;
+    double t_read = sc_now();
     if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK) {
         sc_destroy_context(ctx);
         return cli_report(&err);
     }
-    sc_camera_desc cam = {.width = width, .height = height, .text = camera_arg};
+    double read_ms = 1e3 * (sc_now() - t_read);
     status = 0;
-    if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
-        status = cli_usage_error("bench", "--camera: %s", err.message);
-    } else if (peak) {
+    if (peak) {
         status = bench_peak_run(ctx, scene, desc, &cam, frames);
     } else if (ntargets) {
         status = bench_accuracy_run(ctx, scene, desc, &cam, frames, target_px, target_deg,
@@ -297,6 +352,7 @@ int cmd_bench(int argc, char **argv)
             status = cli_report(&err);
         } else {
             bench_print("specialized", "", &specialized);
+            bench_print_scene(scene_path, read_ms, &specialized);
             bench_result colour;
             sc_renderer_desc cdesc = desc;
             cdesc.colour_only = 1;
