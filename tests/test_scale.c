@@ -166,3 +166,36 @@ TEST(scale_sheet_renders)
     CHECK(acc.ref_hits > 160 * 160 / 10);
     check_accurate(&acc, "sheet");
 }
+
+/* `bench` with several scenes: each one's preparation line (read and
+ * preparation time, peak memory, GPU bytes), one timed line each, and the
+ * covered-pixel rate of the first over each of the others. */
+TEST(scale_bench_several_scenes)
+{
+    const char *dir = make_scenes(2, 2, 4);
+    CHECK(dir != NULL);
+    char cmd[2048], *out = NULL, *err = NULL;
+    snprintf(cmd, sizeof cmd, "%s bench teapot %s --size 48x48 --frames 1", test_cli,
+             scene_path(dir, "teapot_grid.bpt"));
+    int status = test_run(cmd, &out, &err);
+    if (status != 0 && err && strstr(err, "no GL"))
+        SKIP("no GL context: %s", err);
+    CHECK_INT(status, 0);
+    CHECK_CONTAINS(out, "bench scene=teapot read_ms=");
+    const char *grid = strstr(out, "teapot_grid.bpt read_ms=");
+    CHECK(grid != NULL);
+    long hulls = 0;
+    double prepare = -1, peak = -1;
+    size_t gpu = 0;
+    CHECK_INT(sscanf(strstr(grid, "prepare_ms="), "prepare_ms=%lf peak_rss_mb=%lf gpu_bytes=%zu hulls=%ld",
+                     &prepare, &peak, &gpu, &hulls), 4);
+    CHECK(prepare > 0 && peak > 0 && gpu > 0);
+    CHECK(hulls >= 4 * 32);
+    /* Two timed lines, and the ratio of the second scene. */
+    const char *first = strstr(out, "bench variant=specialized");
+    CHECK(first != NULL);
+    CHECK(strstr(first + 1, "bench variant=specialized") != NULL);
+    CHECK_CONTAINS(out, "teapot_grid.bpt mpix_s_ratio_first_over_this=");
+    free(out);
+    free(err);
+}

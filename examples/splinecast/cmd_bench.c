@@ -35,8 +35,10 @@ static const char usage[] =
     "        triangles=T\n"
     "(prepare_ms: making the renderer, programs included; peak_rss_mb: the\n"
     "process's peak resident memory so far). Several SCENEs (without the sweep\n"
-    "options below): each timed with the specialized programs alone, its two\n"
-    "lines, then per scene after the first\n"
+    "options below): every one prepared (its `bench scene=` line, the peak\n"
+    "including the scenes before it), each timed frame drawing every scene in\n"
+    "turn with the specialized programs alone; then one `variant=specialized`\n"
+    "line per scene, in the order given, and per scene after the first\n"
     "  bench scene=PATH mpix_s_ratio_first_over_this=R\n"
     "(the cost per covered pixel against the first scene's).\n"
     "\n"
@@ -166,40 +168,68 @@ static int bench_degrees(sc_context_id ctx, sc_renderer_desc desc, int lo, int h
     return 0;
 }
 
-/* Several scenes, each read and timed in turn with the specialized
- * programs alone (the generic comparison is the one-scene mode's): its
- * `bench variant=specialized` and `bench scene=` lines, then each scene's
- * covered-pixel rate against the first's, so that the cost per covered
- * pixel of a large scene is compared with a small one's in one run. */
+/* Several scenes side by side, with the specialized programs alone (the
+ * generic comparison is the one-scene mode's): each read and its renderer
+ * made in turn (its `bench scene=` line: the peak memory is the process's
+ * so far, which the earlier scenes' renderers are part of), then every
+ * timed frame draws each scene in turn, so that the load of a shared
+ * machine falls on all alike; then each one's `bench variant=specialized`
+ * line and its covered-pixel rate against the first's, the cost per
+ * covered pixel of a large scene set against a small one's. */
+enum { BENCH_MAX_SCENES = 32 };
+
 static int bench_scenes(sc_context_id ctx, const char *const *paths, int count,
                         sc_renderer_desc desc, const sc_camera_desc *cam, int frames)
 {
-    double *mpix_s = calloc((size_t)count, sizeof *mpix_s);
-    int status = 0;
-    for (int i = 0; i < count && !status; i++) {
-        sc_scene_id scene;
-        sc_error err = {0};
-        bench_result result;
-        double t_read = sc_now();
-        if (sc_make_scene(&(sc_scene_desc){.path = paths[i]}, &scene, &err) != SC_OK) {
-            status = cli_report(&err);
-            break;
-        }
-        double read_ms = 1e3 * (sc_now() - t_read);
-        if (bench_run(ctx, scene, &desc, cam, frames, &result, &err) != SC_OK) {
-            status = cli_report(&err);
-        } else {
-            bench_print("specialized", "", &result);
-            bench_print_scene(paths[i], read_ms, &result);
-            mpix_s[i] = result.mpix_s;
-        }
-        sc_destroy_scene(scene);
+    sc_error err = {0};
+    sc_scene_id scenes[BENCH_MAX_SCENES] = {{0}};
+    sc_renderer_id r[BENCH_MAX_SCENES] = {{0}};
+    double warm_up[BENCH_MAX_SCENES] = {0}, mpix_s[BENCH_MAX_SCENES] = {0};
+    double *times = calloc((size_t)(count * frames), sizeof *times);
+    int status = SC_OK;
+    /* Each renderer compiles its own programs, as a fresh process would. */
+    desc.own_programs = 1;
+    for (int i = 0; i < count && status == SC_OK; i++) {
+        double t0 = sc_now();
+        status = sc_make_scene(&(sc_scene_desc){.path = paths[i]}, &scenes[i], &err);
+        double read_ms = 1e3 * (sc_now() - t0);
+        bench_result made = {0};
+        t0 = sc_now();
+        if (status == SC_OK)
+            status = sc_make_renderer(ctx, scenes[i], &desc, &r[i], &err);
+        made.prepare_ms = 1e3 * (sc_now() - t0);
+        if (status == SC_OK)
+            status = sc_query_renderer_info(r[i], &made.stats, &err);
+        if (status == SC_OK)
+            bench_print_scene(paths[i], read_ms, &made);
+        t0 = sc_now();
+        if (status == SC_OK)
+            status = sc_draw(r[i], cam, &err);
+        warm_up[i] = 1e3 * (sc_now() - t0);
     }
-    for (int i = 1; i < count && !status; i++)
+    for (int f = 0; f < frames && status == SC_OK; f++)
+        for (int i = 0; i < count && status == SC_OK; i++) {
+            double t0 = sc_now();
+            status = sc_draw(r[i], cam, &err);
+            times[i * frames + f] = 1e3 * (sc_now() - t0);
+        }
+    for (int i = 0; i < count && status == SC_OK; i++) {
+        bench_result res = {0};
+        status = bench_finish(r[i], times + i * frames, frames, warm_up[i], &res, &err);
+        if (status != SC_OK)
+            break;
+        bench_print("specialized", "", &res);
+        mpix_s[i] = res.mpix_s;
+    }
+    for (int i = 1; i < count && status == SC_OK; i++)
         printf("bench scene=%s mpix_s_ratio_first_over_this=%.2f\n", paths[i],
                mpix_s[i] > 0 ? mpix_s[0] / mpix_s[i] : 0.0);
-    free(mpix_s);
-    return status;
+    for (int i = 0; i < count; i++) {
+        sc_destroy_renderer(r[i]);
+        sc_destroy_scene(scenes[i]);
+    }
+    free(times);
+    return status == SC_OK ? 0 : cli_report(&err);
 }
 
 int cmd_bench(int argc, char **argv)
