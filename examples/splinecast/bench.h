@@ -12,6 +12,7 @@ typedef struct bench_result {
     double mpix_s;          /* covered pixels per second, in millions */
     double iters_mean;      /* Newton iterations per covered pixel */
     double compile_ms;      /* programs, plus the warm-up frame's excess */
+    double prepare_ms;      /* sc_make_renderer: keys, programs, hulls, GPU data */
     long covered;
     sc_renderer_info stats;
 } bench_result;
@@ -29,6 +30,11 @@ int bench_finish(sc_renderer_id r, double *times, int frames, double warm_up_ms,
                  bench_result *out, sc_error *err);
 /* One `bench variant=…` line on stdout; `extra` goes after the variant. */
 void bench_print(const char *variant, const char *extra, const bench_result *r);
+/* The line of what a scene costs before its first frame (cmd_bench.c):
+ * `bench scene=PATH read_ms=R prepare_ms=P peak_rss_mb=M gpu_bytes=B
+ * hulls=H triangles=T`; peak_rss_mb is the process's peak so far
+ * (getrusage's ru_maxrss). */
+void bench_print_scene(const char *path, double read_ms, const bench_result *r);
 
 /* The early-termination / draw-order / batch sweep (bench_order.c). */
 typedef struct bench_sweep {

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "bench.h"
 #include "commands.h"
@@ -20,8 +21,10 @@ int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc
      * compile figures are not cache hits of an earlier run. */
     sc_renderer_desc own = *desc;
     own.own_programs = 1;
+    double t_prepare = sc_now();
     if (sc_make_renderer(ctx, scene, &own, &r, err) != SC_OK)
         return SC_FAIL;
+    double prepare_ms = 1e3 * (sc_now() - t_prepare);
     double *times = calloc((size_t)frames, sizeof(double));
     double t0 = sc_now();
     int status = sc_draw(r, cam, err);
@@ -39,6 +42,7 @@ int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc
     } else if (status == SC_OK) {
         status = bench_finish(r, times, frames, warm_up, out, err);
     }
+    out->prepare_ms = prepare_ms;
     free(times);
     sc_destroy_renderer(r);
     return status;
@@ -83,5 +87,16 @@ void bench_print(const char *variant, const char *extra, const bench_result *r)
            r->stats.readbacks, r->stats.intersections,
            r->covered ? (double)r->stats.intersections / (double)r->covered : 0.0,
            r->stats.peel_layers);
+    fflush(stdout);
+}
+
+void bench_print_scene(const char *path, double read_ms, const bench_result *r)
+{
+    struct rusage usage;
+    double peak_mb = getrusage(RUSAGE_SELF, &usage) == 0 ? usage.ru_maxrss / 1024.0 : 0;
+    printf("bench scene=%s read_ms=%.1f prepare_ms=%.1f peak_rss_mb=%.1f gpu_bytes=%zu hulls=%d "
+           "triangles=%d\n",
+           path, read_ms, r->prepare_ms, peak_mb, r->stats.gpu_bytes, r->stats.hulls,
+           r->stats.triangles);
     fflush(stdout);
 }

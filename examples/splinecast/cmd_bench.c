@@ -20,7 +20,7 @@
 #include "options.h"
 
 static const char usage[] =
-    "usage: splinecast bench [SCENE] [options]\n"
+    "usage: splinecast bench [SCENE...] [options]\n"
     "\n"
     "Times the GPU path on SCENE (default: the embedded teapot) and prints one\n"
     "line per program variant:\n"
@@ -29,7 +29,18 @@ static const char usage[] =
     "        draw_calls=N program_switches=N culled_hulls=N readbacks=N\n"
     "        intersections=N rays_per_covered_pixel=X peel_layers=N\n"
     "and the ratio of the two frame times. frame_ms is the median of the timed\n"
-    "frames after a warm-up frame; mpix_s counts covered pixels only.\n"
+    "frames after a warm-up frame; mpix_s counts covered pixels only. Then what\n"
+    "the scene cost before its first frame:\n"
+    "  bench scene=PATH read_ms=R prepare_ms=P peak_rss_mb=M gpu_bytes=B hulls=H\n"
+    "        triangles=T\n"
+    "(prepare_ms: making the renderer, programs included; peak_rss_mb: the\n"
+    "process's peak resident memory so far). Several SCENEs (without the sweep\n"
+    "options below): every one prepared (its `bench scene=` line, the peak\n"
+    "including the scenes before it), each timed frame drawing every scene in\n"
+    "turn with the specialized programs alone; then one `variant=specialized`\n"
+    "line per scene, in the order given, and per scene after the first\n"
+    "  bench scene=PATH mpix_s_ratio_first_over_this=R\n"
+    "(the cost per covered pixel against the first scene's).\n"
     "\n"
     "options:\n"
     "  --backend egl|osmesa   GL context (default: EGL, falling back to OSMesa)\n"
@@ -170,6 +181,70 @@ static int bench_degrees(sc_context_id ctx, sc_renderer_desc desc, int lo, int h
     return 0;
 }
 
+/* Several scenes side by side, with the specialized programs alone (the
+ * generic comparison is the one-scene mode's): each read and its renderer
+ * made in turn (its `bench scene=` line: the peak memory is the process's
+ * so far, which the earlier scenes' renderers are part of), then every
+ * timed frame draws each scene in turn, so that the load of a shared
+ * machine falls on all alike; then each one's `bench variant=specialized`
+ * line and its covered-pixel rate against the first's, the cost per
+ * covered pixel of a large scene set against a small one's. */
+enum { BENCH_MAX_SCENES = 32 };
+
+static int bench_scenes(sc_context_id ctx, const char *const *paths, int count,
+                        sc_renderer_desc desc, const sc_camera_desc *cam, int frames)
+{
+    sc_error err = {0};
+    sc_scene_id scenes[BENCH_MAX_SCENES] = {{0}};
+    sc_renderer_id r[BENCH_MAX_SCENES] = {{0}};
+    double warm_up[BENCH_MAX_SCENES] = {0}, mpix_s[BENCH_MAX_SCENES] = {0};
+    double *times = calloc((size_t)(count * frames), sizeof *times);
+    int status = SC_OK;
+    /* Each renderer compiles its own programs, as a fresh process would. */
+    desc.own_programs = 1;
+    for (int i = 0; i < count && status == SC_OK; i++) {
+        double t0 = sc_now();
+        status = sc_make_scene(&(sc_scene_desc){.path = paths[i]}, &scenes[i], &err);
+        double read_ms = 1e3 * (sc_now() - t0);
+        bench_result made = {0};
+        t0 = sc_now();
+        if (status == SC_OK)
+            status = sc_make_renderer(ctx, scenes[i], &desc, &r[i], &err);
+        made.prepare_ms = 1e3 * (sc_now() - t0);
+        if (status == SC_OK)
+            status = sc_query_renderer_info(r[i], &made.stats, &err);
+        if (status == SC_OK)
+            bench_print_scene(paths[i], read_ms, &made);
+        t0 = sc_now();
+        if (status == SC_OK)
+            status = sc_draw(r[i], cam, &err);
+        warm_up[i] = 1e3 * (sc_now() - t0);
+    }
+    for (int f = 0; f < frames && status == SC_OK; f++)
+        for (int i = 0; i < count && status == SC_OK; i++) {
+            double t0 = sc_now();
+            status = sc_draw(r[i], cam, &err);
+            times[i * frames + f] = 1e3 * (sc_now() - t0);
+        }
+    for (int i = 0; i < count && status == SC_OK; i++) {
+        bench_result res = {0};
+        status = bench_finish(r[i], times + i * frames, frames, warm_up[i], &res, &err);
+        if (status != SC_OK)
+            break;
+        bench_print("specialized", "", &res);
+        mpix_s[i] = res.mpix_s;
+    }
+    for (int i = 1; i < count && status == SC_OK; i++)
+        printf("bench scene=%s mpix_s_ratio_first_over_this=%.2f\n", paths[i],
+               mpix_s[i] > 0 ? mpix_s[0] / mpix_s[i] : 0.0);
+    for (int i = 0; i < count; i++) {
+        sc_destroy_renderer(r[i]);
+        sc_destroy_scene(scenes[i]);
+    }
+    free(times);
+    return status == SC_OK ? 0 : cli_report(&err);
+}
+
 int cmd_bench(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
@@ -268,8 +343,9 @@ int cmd_bench(int argc, char **argv)
         }
     }
     int sweeping = sweep.nerts || sweep.norders || sweep.nbatches;
-    if (sweep.nscenes > 1 && !sweeping)
-        return cli_usage_error("bench", "several scenes need --ert, --order or --batch");
+    if (sweep.nscenes > 1 && (peak || ntargets || nmethods > 1 || deg_lo))
+        return cli_usage_error("bench", "several scenes go with --ert, --order, --batch or "
+                                        "none of the other modes");
     sc_context_id ctx;
     sc_context_info ctx_info;
     if (sc_make_context(&ctx_desc, &ctx, &err) != SC_OK ||
@@ -290,16 +366,25 @@ int cmd_bench(int argc, char **argv)
         sc_destroy_context(ctx);
         return status;
     }
+    sc_camera_desc cam = {.width = width, .height = height, .text = camera_arg};
+    if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
+        sc_destroy_context(ctx);
+        return cli_usage_error("bench", "--camera: %s", err.message);
+    }
+    if (sweep.nscenes > 1) {
+        status = bench_scenes(ctx, sweep.scenes, sweep.nscenes, desc, &cam, frames);
+        sc_destroy_context(ctx);
+        return status;
+    }
     sc_scene_id scene;
+    double t_read = sc_now();
     if (sc_make_scene(&(sc_scene_desc){.path = scene_path}, &scene, &err) != SC_OK) {
         sc_destroy_context(ctx);
         return cli_report(&err);
     }
-    sc_camera_desc cam = {.width = width, .height = height, .text = camera_arg};
+    double read_ms = 1e3 * (sc_now() - t_read);
     status = 0;
-    if (camera_arg && sc_check_camera(&cam, &err) != SC_OK) {
-        status = cli_usage_error("bench", "--camera: %s", err.message);
-    } else if (peak) {
+    if (peak) {
         status = bench_peak_run(ctx, scene, desc, &cam, frames);
     } else if (update) {
         status = bench_update_run(ctx, scene, desc, &cam, frames);
@@ -314,6 +399,7 @@ int cmd_bench(int argc, char **argv)
             status = cli_report(&err);
         } else {
             bench_print("specialized", "", &specialized);
+            bench_print_scene(scene_path, read_ms, &specialized);
             bench_result colour;
             sc_renderer_desc cdesc = desc;
             cdesc.colour_only = 1;

@@ -1,0 +1,201 @@
+/* test_scale.c — the scale scenes (examples/scenes/make_scale_scenes.sh):
+ * the generator's files read back with the patches they should hold, and
+ * a grid of a few thousand teapot patches, each hull a few pixels across,
+ * and one B-spline surface of many spans render as the CPU reference sees
+ * them. The 100,000-patch sizes
+ * are benchmarks (docs/speed.md, "Scale"), not tests. */
+#include <stdlib.h>
+
+#include "camera.h"
+#include "gl_context_util.h"
+#include "gl_render.h"
+#include "imgdiff.h"
+#include "io.h"
+#include "refcast.h"
+#include "test.h"
+
+/* Writes the scale scenes of nx × ny teapots and spans × spans spans into
+ * a folder of the run's temporary one; its path, or NULL. */
+static const char *make_scenes(int nx, int ny, int spans)
+{
+    static char dir[512];
+    snprintf(dir, sizeof dir, "%s/scale_%dx%d_%d", test_tmpdir(), nx, ny, spans);
+    char cmd[1536];
+    snprintf(cmd, sizeof cmd, "sh %s %s %d %d %d",
+             test_root("examples/scenes/make_scale_scenes.sh"), dir, nx, ny, spans);
+    return test_run(cmd, NULL, NULL) == 0 ? dir : NULL;
+}
+
+static const char *scene_path(const char *dir, const char *name)
+{
+    static char path[4][600];
+    static int next;
+    char *p = path[next++ % 4];
+    snprintf(p, sizeof path[0], "%s/%s", dir, name);
+    return p;
+}
+
+TEST(scale_scenes_read_back)
+{
+    const char *dir = make_scenes(5, 3, 12);
+    CHECK(dir != NULL);
+    sc_error err = {0};
+    sc_scene teapot, grid, sheet;
+    CHECK_INT(sc_read_scene(TEST_TEAPOT32, &teapot, &err), SC_OK);
+    CHECK_INT(sc_read_scene(scene_path(dir, "teapot_grid.bpt"), &grid, &err), SC_OK);
+    /* One teapot per cell, copy (i, j) moved by (8i, 6j): each patch's
+     * control points are the teapot's, so moved. */
+    CHECK_INT(grid.nsurfaces, 5 * 3 * teapot.nsurfaces);
+    for (int c = 0; c < 5 * 3; c++) {
+        double dx = 8 * (c % 5), dy = 6 * (c / 5);
+        for (int s = 0; s < teapot.nsurfaces; s++) {
+            const sc_surface *a = &teapot.surfaces[s];
+            const sc_surface *b = &grid.surfaces[c * teapot.nsurfaces + s];
+            CHECK_INT(b->deg_u, a->deg_u);
+            CHECK_INT(b->deg_v, a->deg_v);
+            CHECK_INT(b->nu * b->nv, a->nu * a->nv);
+            for (int k = 0; k < a->nu * a->nv; k++) {
+                CHECK_NEAR(b->cp[4 * k], a->cp[4 * k] + dx, 1e-9);
+                CHECK_NEAR(b->cp[4 * k + 1], a->cp[4 * k + 1] + dy, 1e-9);
+                CHECK_NEAR(b->cp[4 * k + 2], a->cp[4 * k + 2], 1e-9);
+            }
+        }
+    }
+    /* One bicubic surface of 12 × 12 spans: 15 × 15 control points over
+     * [0, 12]², clamped, the knots 0 … 12 once each inside. */
+    CHECK_INT(sc_read_scene(scene_path(dir, "bspline_sheet.obj"), &sheet, &err), SC_OK);
+    CHECK_INT(sheet.nsurfaces, 1);
+    const sc_surface *s = &sheet.surfaces[0];
+    CHECK_INT(s->deg_u, 3);
+    CHECK_INT(s->deg_v, 3);
+    CHECK_INT(s->nu, 15);
+    CHECK_INT(s->nv, 15);
+    sc_patch_list patches;
+    sc_surface_world_patches(s, 0, &patches);
+    CHECK_INT(patches.count, 12 * 12);
+    sc_patch_list_free(&patches);
+    sc_scene_free(&teapot);
+    sc_scene_free(&grid);
+    sc_scene_free(&sheet);
+}
+
+/* Renders path in its default view at w × h with the default settings and
+ * compares with the CPU reference; the frame's counts in *stats. 1, 0 on
+ * failure, -1 without a GL context. */
+static int render_scale(const char *path, int w, int h, sc_accuracy *acc,
+                        sc_render_stats *stats, const char **why)
+{
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, why);
+    if (!ctx)
+        return -1;
+    static sc_error err;
+    *why = err.message;
+    sc_scene scene;
+    if (sc_read_scene(path, &scene, &err) != SC_OK)
+        return 0;
+    sc_camera cam;
+    sc_camera_default(&scene, &cam);
+    cam.width = w;
+    cam.height = h;
+    sc_aov ref, aov;
+    int ok = 0;
+    if (sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err) == SC_OK) {
+        sc_renderer *r;
+        if (sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err) == SC_OK) {
+            if (sc_renderer_draw(r, &cam, &err) == SC_OK &&
+                sc_renderer_read(r, NULL, &aov, &err) == SC_OK) {
+                ok = sc_accuracy_compare(&ref, &aov, acc, &err) == SC_OK;
+                sc_aov_free(&aov);
+            }
+            sc_renderer_stats(r, stats);
+            sc_renderer_destroy(r);
+        }
+        sc_aov_free(&ref);
+    }
+    sc_scene_free(&scene);
+    if (!ok)
+        fprintf(stderr, "  %s: %s\n", path, err.message);
+    return ok;
+}
+
+static void check_accurate(const sc_accuracy *acc, const char *what)
+{
+    if (!(acc->fail_pct <= 0.5 && acc->pos_median_px < 0.1))
+        fprintf(stderr, "  %s: fail_pct %g pos_median_px %g (hits %ld)\n", what,
+                acc->fail_pct, acc->pos_median_px, (long)acc->ref_hits);
+    CHECK(acc->fail_pct <= 0.5);
+    CHECK(acc->pos_median_px < 0.1);
+}
+
+/* 16 × 12 teapots (6,144 patches) at 192 × 192: every hull a few pixels
+ * across, most of the rays through them misses (gen/hybrid.c skips the
+ * restarts of rays that pass wide of a record), every pixel as the
+ * reference sees it. */
+TEST(scale_grid_renders)
+{
+    const char *dir = make_scenes(16, 12, 4);
+    CHECK(dir != NULL);
+    sc_accuracy acc;
+    sc_render_stats stats;
+    const char *why;
+    int ok = render_scale(scene_path(dir, "teapot_grid.bpt"), 192, 192, &acc, &stats, &why);
+    if (ok < 0)
+        SKIP("no GL context: %s", why);
+    CHECK(ok);
+    CHECK(stats.hulls >= 16 * 12 * 32);  /* adaptive hulls may split */
+    CHECK(acc.ref_hits > 192 * 192 / 20);
+    /* Many more rays than covered pixels: the hulls' slack is wide here. */
+    CHECK(stats.intersections > 2 * acc.ref_hits);
+    check_accurate(&acc, "grid");
+}
+
+/* One B-spline surface of 60 × 60 spans (3,600 Bézier patches, one
+ * record and hull each) at 160 × 160. */
+TEST(scale_sheet_renders)
+{
+    const char *dir = make_scenes(1, 1, 60);
+    CHECK(dir != NULL);
+    sc_accuracy acc;
+    sc_render_stats stats;
+    const char *why;
+    int ok = render_scale(scene_path(dir, "bspline_sheet.obj"), 160, 160, &acc, &stats, &why);
+    if (ok < 0)
+        SKIP("no GL context: %s", why);
+    CHECK(ok);
+    CHECK(stats.hulls >= 60 * 60);
+    CHECK(acc.ref_hits > 160 * 160 / 10);
+    check_accurate(&acc, "sheet");
+}
+
+/* `bench` with several scenes: each one's preparation line (read and
+ * preparation time, peak memory, GPU bytes), one timed line each, and the
+ * covered-pixel rate of the first over each of the others. */
+TEST(scale_bench_several_scenes)
+{
+    const char *dir = make_scenes(2, 2, 4);
+    CHECK(dir != NULL);
+    char cmd[2048], *out = NULL, *err = NULL;
+    snprintf(cmd, sizeof cmd, "%s bench teapot %s --size 48x48 --frames 1", test_cli,
+             scene_path(dir, "teapot_grid.bpt"));
+    int status = test_run(cmd, &out, &err);
+    if (status != 0 && err && strstr(err, "no GL"))
+        SKIP("no GL context: %s", err);
+    CHECK_INT(status, 0);
+    CHECK_CONTAINS(out, "bench scene=teapot read_ms=");
+    const char *grid = strstr(out, "teapot_grid.bpt read_ms=");
+    CHECK(grid != NULL);
+    long hulls = 0;
+    double prepare = -1, peak = -1;
+    size_t gpu = 0;
+    CHECK_INT(sscanf(strstr(grid, "prepare_ms="), "prepare_ms=%lf peak_rss_mb=%lf gpu_bytes=%zu hulls=%ld",
+                     &prepare, &peak, &gpu, &hulls), 4);
+    CHECK(prepare > 0 && peak > 0 && gpu > 0);
+    CHECK(hulls >= 4 * 32);
+    /* Two timed lines, and the ratio of the second scene. */
+    const char *first = strstr(out, "bench variant=specialized");
+    CHECK(first != NULL);
+    CHECK(strstr(first + 1, "bench variant=specialized") != NULL);
+    CHECK_CONTAINS(out, "teapot_grid.bpt mpix_s_ratio_first_over_this=");
+    free(out);
+    free(err);
+}
