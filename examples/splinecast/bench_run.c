@@ -31,14 +31,8 @@ int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc
         status = sc_draw(r, cam, err);
         times[f] = 1e3 * (sc_now() - t0);
     }
-    if (status == SC_OK && desc->colour_only) {
-        /* Nothing to read back: the renderer's counts and the median. */
-        status = sc_query_renderer_info(r, &out->stats, err);
-        out->frame_ms = cli_median(times, frames);
-        out->compile_ms = out->stats.compile_ms + fmax(warm_up - out->frame_ms, 0);
-    } else if (status == SC_OK) {
+    if (status == SC_OK)
         status = bench_finish(r, times, frames, warm_up, out, err);
-    }
     free(times);
     sc_destroy_renderer(r);
     return status;
