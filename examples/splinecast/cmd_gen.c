@@ -34,7 +34,9 @@ const char gen_keys_usage[] =
     "KEYS, exactly one of:\n"
     "  --key KEY...       variant keys in canonical form (docs/variant-key.md)\n"
     "  --scene SCENE      the keys SCENE's surfaces need (one per degree pair,\n"
-    "                     rationality and trimming)\n"
+    "                     rationality and trimming; a key whose outputs are\n"
+    "                     shade.aov also without aov: a renderer draws with\n"
+    "                     that one and reads frames back with the other)\n"
     "  --family LO..HI    bez keys of every degree pair LO..HI x LO..HI, rational\n"
     "                     and not\n"
     "with --scene and --family:\n"
@@ -108,6 +110,15 @@ static int add_scene_keys(const char *path, const char *like, const int *iters, 
             status = sc_query_surface_key(scene, s, &desc, &key, &err);
             if (status == SC_OK)
                 add_key(set, &key);
+            /* A renderer's frames write the AOVs on demand only
+             * (sc_renderer_desc.aovs): it draws with the key without them. */
+            size_t n = status == SC_OK ? strlen(key.text) : 0;
+            if (n > 14 && !strcmp(key.text + n - 14, "-out.shade.aov")) {
+                desc.outputs = SC_OUTPUT_SHADE;
+                status = sc_query_surface_key(scene, s, &desc, &key, &err);
+                if (status == SC_OK)
+                    add_key(set, &key);
+            }
         }
     sc_destroy_scene(scene);
     return status == SC_OK ? 0 : cli_report(&err);

@@ -509,6 +509,8 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     scg_key key;
     sc_prepare_surface_key(&r->scene->surfaces[surface], &r->desc,
                            r->choices ? &r->choices[surface] : NULL, &key);
+    if (colour_frames(&r->desc))
+        key.outputs &= ~SCG_OUTPUT_AOV;
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
     sc_patch_list old = r->patches[surface];
