@@ -95,7 +95,7 @@ static int parse_iters(const char *text, int *iters, int max)
  * scene could not be read or drawn (`render` refuses a surface no program
  * draws). */
 static int add_scene_keys(const char *path, const char *like, const int *iters, int niters,
-                          gen_keys *set)
+                          int drawing_keys, gen_keys *set)
 {
     sc_scene_id scene;
     sc_scene_info info;
@@ -110,10 +110,11 @@ static int add_scene_keys(const char *path, const char *like, const int *iters, 
             status = sc_query_surface_key(scene, s, &desc, &key, &err);
             if (status == SC_OK)
                 add_key(set, &key);
-            /* A renderer's frames write the AOVs on demand only
-             * (sc_renderer_desc.aovs): it draws with the key without them. */
+            /* For gen: a renderer's frames write the AOVs on demand only
+             * (sc_renderer_desc.aovs), so it draws with the key without
+             * them; audit measures the scene keys alone. */
             size_t n = status == SC_OK ? strlen(key.text) : 0;
-            if (n > 14 && !strcmp(key.text + n - 14, "-out.shade.aov")) {
+            if (drawing_keys && n > 14 && !strcmp(key.text + n - 14, "-out.shade.aov")) {
                 desc.outputs = SC_OUTPUT_SHADE;
                 status = sc_query_surface_key(scene, s, &desc, &key, &err);
                 if (status == SC_OK)
@@ -211,7 +212,7 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
         }
     }
     if (status == 0 && scene_path)
-        status = add_scene_keys(scene_path, like, iters, niters, set);
+        status = add_scene_keys(scene_path, like, iters, niters, !strcmp(cmd, "gen"), set);
     if (status == 0 && family)
         status = add_family_keys(cmd, family, like, iters, niters, set);
     if (status == 0 && iters_given && ngiven > 0) {
