@@ -43,11 +43,13 @@ int bench_finish(sc_renderer_id r, double *times, int frames, double warm_up_ms,
 {
     sc_frame_id frame = {0};
     sc_frame_info info;
-    int status = sc_read_frame(r, &frame, err);
+    /* The counts of the last timed frame, before the read draws it again
+     * with the AOVs where it had none (and compiles their programs). */
+    int status = sc_query_renderer_info(r, &out->stats, err);
+    if (status == SC_OK)
+        status = sc_read_frame(r, &frame, err);
     if (status == SC_OK)
         status = sc_query_frame_info(frame, &info, err);
-    if (status == SC_OK)
-        status = sc_query_renderer_info(r, &out->stats, err);
     if (status == SC_OK) {
         out->frame_ms = cli_median(times, frames);
         double iters = 0;
