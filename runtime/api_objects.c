@@ -236,11 +236,10 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->method = d->method;
     r->deferred = d->deferred != 0;
     r->time_intersection = d->time_intersection != 0;
-    r->colour_only = d->colour_only != 0;
-    if (r->colour_only && (d->show != SC_SHOW_SHADE || d->deferred))
-        return sc_api_invalid(err, "sc_renderer_desc.colour_only", PROBLEM_RANGE,
-                              "1 needs the shaded view and no deferred shading (the other "
-                              "views and deferred shading are drawn from the AOVs)");
+    if (d->aovs != SC_AOVS_ON_DEMAND && d->aovs != SC_AOVS_ALWAYS)
+        return sc_api_invalid(err, "sc_renderer_desc.aovs", PROBLEM_RANGE,
+                              "SC_AOVS_ON_DEMAND (0) or SC_AOVS_ALWAYS (1)");
+    r->aovs_on_demand = d->aovs == SC_AOVS_ON_DEMAND;
     return SC_OK;
 }
 

@@ -12,6 +12,7 @@
  * did not hit is a miss, as the picture shows. The IR interpreter would
  * only repeat the GPU's float arithmetic, so it is not used. */
 #include "api_private.h"
+#include "gl_state.h"
 #include "trim.h"
 
 enum { NEWTON_MAX = 40 };
@@ -95,7 +96,17 @@ int sc_pick(sc_renderer_id renderer, double x, double y, sc_pick_result *out, sc
         return SC_FAIL;
     sc_image image = {0};
     sc_aov aov = {0};
-    if (sc_renderer_read(r->renderer, &image, &aov, err) != SC_OK) {
+    /* The read may draw the frame again with its AOVs: in an application's
+     * context, what that changes is put back. */
+    sc_gl_state saved;
+    int app = sc_gl_context_is_app(r->context->gl);
+    const sc_gl *gl = sc_gl_context_gl(r->context->gl);
+    if (app)
+        sc_gl_state_save(gl, &saved);
+    int read = sc_renderer_read(r->renderer, &image, &aov, err);
+    if (app)
+        sc_gl_state_restore(gl, &saved);
+    if (read != SC_OK) {
         sc_image_free(&image);
         sc_aov_free(&aov);
         return SC_FAIL;

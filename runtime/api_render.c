@@ -309,7 +309,9 @@ static int add_frame(frame_object *f, sc_frame_id *out, sc_error *err)
     return SC_FAIL;
 }
 
-int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err)
+/* sc_draw, writing the AOVs when aovs is 1 whatever the renderer's
+ * sc_renderer_desc.aovs says. */
+static int draw(sc_renderer_id renderer, const sc_camera_desc *camera, int aovs, sc_error *err)
 {
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
     sc_camera cam;
@@ -323,10 +325,16 @@ int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err
     const sc_gl *gl = sc_gl_context_gl(r->context->gl);
     if (app)
         sc_gl_state_save(gl, &saved);
-    int status = sc_renderer_draw(r->renderer, &cam, err);
+    int status = aovs ? sc_renderer_draw_aovs(r->renderer, &cam, err)
+                      : sc_renderer_draw(r->renderer, &cam, err);
     if (app)
         sc_gl_state_restore(gl, &saved);
     return status;
+}
+
+int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err)
+{
+    return draw(renderer, camera, 0, err);
 }
 
 int sc_draw_gl(sc_renderer_id renderer, const sc_gl_draw_desc *desc, sc_error *err)
@@ -394,9 +402,9 @@ int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id
         return sc_api_invalid(err, "out", PROBLEM_NULL, NULL);
     out->id = 0;
     double t0 = sc_now();
-    if (sc_draw(renderer, camera, err) != SC_OK)
+    if (draw(renderer, camera, 1, err) != SC_OK)
         return SC_FAIL;
-    /* sc_draw found the handle valid. */
+    /* draw found the handle valid. */
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, NULL);
     return read_frame(r, 1e3 * (sc_now() - t0), out, err);
 }

@@ -1,6 +1,7 @@
-/* test_outputs.c — outputs on demand: a colour-only renderer draws the
- * same work as one that writes the AOVs, drops the AOVs its termination
- * does not read, and says so when asked for a frame. */
+/* test_outputs.c — outputs on demand: the default renderer's sc_draw
+ * writes colour and depth alone, running the rays a renderer that always
+ * writes the AOVs runs, and a read or a pick after it draws the frame again
+ * with them, the always-AOV frame. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,29 +14,63 @@
 #include "splinecast.h"
 #include "test.h"
 
-static long long intersections_of(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
-                                  const sc_camera_desc *cam, sc_key *key, sc_error *err)
+/* A renderer's last sc_draw: its intersections and keys; then, read back
+ * (drawn again with the AOVs where the frame had none), its image; the
+ * programs before and after. */
+typedef struct drawn {
+    long long intersections;
+    int programs, programs_read;
+    sc_key key;
+    sc_frame_id frame;
+    sc_pick_result pick[4];
+} drawn;
+
+static const double pick_at[4][2] = {{48.5, 36.5}, {40.5, 30.5}, {60.5, 44.5}, {2.5, 2.5}};
+
+static int draw_and_read(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                         const sc_camera_desc *cam, drawn *out, sc_error *err)
 {
     sc_renderer_id r;
-    sc_renderer_info info = {0};
+    sc_renderer_info info = {0}, after = {0};
     int count = 0;
+    memset(out, 0, sizeof *out);
     if (sc_make_renderer(ctx, scene, &desc, &r, err) != SC_OK)
-        return -1;
+        return SC_FAIL;
     int ok = sc_draw(r, cam, err) == SC_OK && sc_query_renderer_info(r, &info, err) == SC_OK &&
-             sc_query_renderer_keys(r, key, 1, &count, err) == SC_OK;
-    if (ok && desc.colour_only) {
-        sc_frame_id frame = {0};
-        sc_error read_err = {0};
-        ok = sc_read_frame(r, &frame, &read_err) == SC_FAIL &&
-             strstr(read_err.message, "colour-only") && strstr(read_err.message, "no AOVs");
-        if (!ok)
-            snprintf(err->message, sizeof err->message, "read: %.400s", read_err.message);
-    }
+             sc_query_renderer_keys(r, &out->key, 1, &count, err) == SC_OK &&
+             sc_read_frame(r, &out->frame, err) == SC_OK &&
+             sc_query_renderer_info(r, &after, err) == SC_OK;
+    /* Picking after a draw: each pick reads the frame (the first drawn
+     * again with the AOVs where it had none). */
+    for (int i = 0; ok && i < 4; i++)
+        ok = sc_draw(r, cam, err) == SC_OK &&
+             sc_pick(r, pick_at[i][0], pick_at[i][1], &out->pick[i], err) == SC_OK;
     sc_destroy_renderer(r);
-    return ok ? info.intersections : -1;
+    out->intersections = info.intersections;
+    out->programs = info.programs;
+    out->programs_read = after.programs;
+    return ok ? SC_OK : SC_FAIL;
 }
 
-TEST(outputs_colour_only_frames)
+/* Pixels whose colour differs by more than 2 levels. */
+static int differing(sc_frame_id a, sc_frame_id b)
+{
+    sc_frame_info fa, fb;
+    sc_error err = {0};
+    if (sc_query_frame_info(a, &fa, &err) != SC_OK || sc_query_frame_info(b, &fb, &err) != SC_OK ||
+        fa.width != fb.width || fa.height != fb.height)
+        return -1;
+    int differ = 0;
+    for (int p = 0; p < fa.width * fa.height; p++)
+        for (int c = 0; c < 3; c++)
+            if (abs(fa.rgba[4 * p + c] - fb.rgba[4 * p + c]) > 2) {
+                differ++;
+                break;
+            }
+    return differ;
+}
+
+TEST(outputs_on_demand_frames)
 {
     sc_error err = {0};
     sc_context_id ctx;
@@ -48,33 +83,58 @@ TEST(outputs_colour_only_frames)
     sc_camera_desc cam = {.width = 96, .height = 72};
     static const sc_ray_termination modes[] = {SC_TERMINATION_DEFAULT, SC_TERMINATION_NONE};
     for (int m = 0; m < 2; m++) {
-        sc_key full, colour;
-        long long a = intersections_of(ctx, scene, (sc_renderer_desc){.termination = modes[m]},
-                                       &cam, &full, &err);
-        CHECK(a > 0);
-        long long b = intersections_of(
-            ctx, scene, (sc_renderer_desc){.termination = modes[m], .colour_only = 1}, &cam,
-            &colour, &err);
-        if (b < 0)
-            TEST_FAIL_("colour-only: %s", err.message);
-        /* The programs drop the AOVs. Without termination the same rays
-         * run; under manual termination the nearest distances come from
-         * the depth buffer, made a little larger than it rounds them, so
-         * a few more rays may run, never fewer than a handful less. */
+        drawn always, demand;
+        if (draw_and_read(ctx, scene,
+                          (sc_renderer_desc){.termination = modes[m], .aovs = SC_AOVS_ALWAYS},
+                          &cam, &always, &err) != SC_OK)
+            TEST_FAIL_("always: %s", err.message);
+        if (draw_and_read(ctx, scene, (sc_renderer_desc){.termination = modes[m]}, &cam, &demand,
+                          &err) != SC_OK)
+            TEST_FAIL_("on demand: %s", err.message);
+        CHECK(always.intersections > 0);
+        /* The default's sc_draw ran programs without the AOVs. Without
+         * termination the same rays run; under manual termination the
+         * nearest distances come from the depth buffer, made a little
+         * larger than it rounds them, so a few more rays may run, never
+         * fewer than a handful less. */
+        long long a = always.intersections, b = demand.intersections;
         if (modes[m] == SC_TERMINATION_NONE)
             CHECK_INT(a, b);
         else
             CHECK(b >= a - a / 1000 && b <= a + a / 50);
-        size_t n = strlen(colour.text);
-        CHECK(n > 10 && !strcmp(full.text + strlen(full.text) - 4, ".aov"));
-        CHECK(!strcmp(colour.text + n - 10, "-out.shade"));
+        size_t n = strlen(demand.key.text);
+        CHECK(n > 10 && !strcmp(always.key.text + strlen(always.key.text) - 4, ".aov"));
+        CHECK(!strcmp(demand.key.text + n - 10, "-out.shade"));
+        /* The AOV programs were compiled for the read, not before. */
+        CHECK_INT(always.programs_read, always.programs);
+        CHECK(demand.programs_read > demand.programs);
+        /* The frame read back is the always-AOV frame's. */
+        CHECK_INT(differing(always.frame, demand.frame), 0);
+        for (int i = 0; i < 4; i++) {
+            const sc_pick_result *x = &always.pick[i], *y = &demand.pick[i];
+            CHECK_INT(x->hit, y->hit);
+            CHECK_INT(x->surface, y->surface);
+            CHECK_INT(x->gpu_surface, y->gpu_surface);
+            CHECK_NEAR(x->u, y->u, 1e-9);
+            CHECK_NEAR(x->v, y->v, 1e-9);
+            CHECK_NEAR(x->t, y->t, 1e-9);
+        }
+        CHECK(always.pick[0].hit);   /* the middle of the default view */
+        CHECK(!always.pick[3].hit);  /* its corner */
+        sc_destroy_frame(always.frame);
+        sc_destroy_frame(demand.frame);
     }
     sc_renderer_id r;
-    CHECK_INT(sc_make_renderer(ctx, scene,
-                               &(sc_renderer_desc){.colour_only = 1, .show = SC_SHOW_NORMAL}, &r,
-                               &err),
-              SC_FAIL);
-    CHECK_CONTAINS(err.message, "colour_only");
+    CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.aovs = 2}, &r, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "aovs");
+    /* A debug view is drawn from the AOVs: its renderer keeps them. */
+    drawn normal;
+    CHECK_INT(draw_and_read(ctx, scene, (sc_renderer_desc){.show = SC_SHOW_NORMAL}, &cam, &normal,
+                            &err),
+              SC_OK);
+    CHECK_INT(normal.programs_read, normal.programs);
+    CHECK(strcmp(normal.key.text + strlen(normal.key.text) - 10, "-out.shade"));
+    sc_destroy_frame(normal.frame);
     sc_destroy_context(ctx);
     sc_destroy_scene(scene);
 }
@@ -82,7 +142,9 @@ TEST(outputs_colour_only_frames)
 /* The colour-only frame's picture is the full frame's: its colour
  * attachment, read by the runtime's own means, against the shaded image
  * of a renderer that writes the AOVs, under the default (manual)
- * termination, whose nearest distances then come from the depth buffer. */
+ * termination, whose nearest distances then come from the depth buffer.
+ * The colour-only target has no AOV attachment; a read after the frame
+ * draws it again with them, at the same camera, and gets the same image. */
 TEST(outputs_colour_only_image_matches)
 {
     const char *why = "";
@@ -95,34 +157,53 @@ TEST(outputs_colour_only_image_matches)
     CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
     sc_camera cam = {.eye = {0, -8, 3}, .target = {0, 0, 0.8}, .fovy_deg = 30,
                      .width = 160, .height = 120};
-    sc_image full = {0}, colour = {0};
+    sc_image full = {0}, colour = {0}, again = {0};
+    sc_aov aov = {0};
     sc_render_desc desc = {0};
     sc_renderer *r;
     CHECK_INT(sc_renderer_create(gl, &scene, &desc, &r, &err), SC_OK);
     CHECK_INT(sc_renderer_draw(r, &cam, &err), SC_OK);
+    CHECK(r->target.colour[SCG_FRAG_OUT_SURFACE] != 0);
     CHECK_INT(sc_renderer_read(r, &full, NULL, &err), SC_OK);
     sc_renderer_destroy(r);
-    desc.colour_only = 1;
+    desc.aovs_on_demand = 1;
     CHECK_INT(sc_renderer_create(gl, &scene, &desc, &r, &err), SC_OK);
     CHECK_INT(sc_renderer_draw(r, &cam, &err), SC_OK);
     CHECK(r->readbacks > 0);   /* the depth buffer's nearest distances were read */
     CHECK(r->target.colour[SCG_FRAG_OUT_SURFACE] == 0 && r->target.colour[SCG_FRAG_OUT_UVT] == 0);
+    CHECK(r->groups[0].aov.id == 0);   /* not compiled yet */
     CHECK_INT(sc_gl_target_read_image(gl, &r->target, SCG_FRAG_OUT_COLOUR, &colour, &err), SC_OK);
+    CHECK_INT(sc_renderer_read(r, &again, &aov, &err), SC_OK);
+    CHECK(r->target.colour[SCG_FRAG_OUT_SURFACE] != 0 && r->groups[0].aov.id != 0);
+    int covered = 0;
+    for (int p = 0; aov.surface && p < cam.width * cam.height; p++)
+        covered += aov.surface[p] >= 0;
+    CHECK(covered > cam.width * cam.height / 10);
+    /* The next sc_renderer_draw writes the colour alone again. */
+    CHECK_INT(sc_renderer_draw(r, &cam, &err), SC_OK);
+    CHECK(r->target.colour[SCG_FRAG_OUT_SURFACE] == 0);
     sc_renderer_destroy(r);
-    int n = cam.width * cam.height, differ = 0;
-    CHECK(full.pixels && colour.pixels && full.channels == colour.channels);
-    for (int p = 0; full.pixels && colour.pixels && p < n; p++) {
-        int worst = 0;
+    int n = cam.width * cam.height, differ = 0, differ_again = 0;
+    CHECK(full.pixels && colour.pixels && again.pixels && full.channels == colour.channels &&
+          full.channels == again.channels);
+    for (int p = 0; full.pixels && colour.pixels && again.pixels && p < n; p++) {
+        int worst = 0, worst_again = 0;
         for (int c = 0; c < 3; c++) {
             int d = abs(full.pixels[p * full.channels + c] - colour.pixels[p * colour.channels + c]);
+            int e = abs(full.pixels[p * full.channels + c] - again.pixels[p * again.channels + c]);
             worst = d > worst ? d : worst;
+            worst_again = e > worst_again ? e : worst_again;
         }
         differ += worst > 2;
+        differ_again += worst_again > 0;
     }
     if (differ)
         fprintf(stderr, "  %d of %d pixels differ by more than 2 levels\n", differ, n);
     CHECK(differ <= n / 1000);
+    CHECK_INT(differ_again, 0);
     sc_image_free(&full);
     sc_image_free(&colour);
+    sc_image_free(&again);
+    sc_aov_free(&aov);
     sc_scene_free(&scene);
 }

@@ -17,9 +17,9 @@ typedef struct bench_result {
     sc_renderer_info stats;
 } bench_result;
 
-/* Makes a renderer, draws a warm-up frame and `frames` timed ones. A
- * colour-only renderer (desc->colour_only) is not read back: covered,
- * iters_mean and mpix_s stay 0. */
+/* Makes a renderer, draws a warm-up frame and `frames` timed ones (with
+ * the AOVs as desc->aovs says), then reads the last back (bench_finish;
+ * drawn again with the AOVs when it had none). */
 int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc,
               const sc_camera_desc *cam, int frames, bench_result *out, sc_error *err);
 /* The figures of a renderer already timed: the median of its `frames`

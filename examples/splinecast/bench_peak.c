@@ -29,6 +29,8 @@ int bench_peak_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
         return cli_report(&err);
     desc.own_programs = 1;
     desc.time_intersection = 1;
+    /* The timed frames are those whose iterations are read back. */
+    desc.aovs = SC_AOVS_ALWAYS;
     sc_renderer_id r;
     if (sc_make_renderer(ctx, scene, &desc, &r, &err) != SC_OK)
         return cli_report(&err);

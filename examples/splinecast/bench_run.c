@@ -34,14 +34,8 @@ int bench_run(sc_context_id ctx, sc_scene_id scene, const sc_renderer_desc *desc
         status = sc_draw(r, cam, err);
         times[f] = 1e3 * (sc_now() - t0);
     }
-    if (status == SC_OK && desc->colour_only) {
-        /* Nothing to read back: the renderer's counts and the median. */
-        status = sc_query_renderer_info(r, &out->stats, err);
-        out->frame_ms = cli_median(times, frames);
-        out->compile_ms = out->stats.compile_ms + fmax(warm_up - out->frame_ms, 0);
-    } else if (status == SC_OK) {
+    if (status == SC_OK)
         status = bench_finish(r, times, frames, warm_up, out, err);
-    }
     out->prepare_ms = prepare_ms;
     free(times);
     sc_destroy_renderer(r);
@@ -53,11 +47,13 @@ int bench_finish(sc_renderer_id r, double *times, int frames, double warm_up_ms,
 {
     sc_frame_id frame = {0};
     sc_frame_info info;
-    int status = sc_read_frame(r, &frame, err);
+    /* The counts of the last timed frame, before the read draws it again
+     * with the AOVs where it had none (and compiles their programs). */
+    int status = sc_query_renderer_info(r, &out->stats, err);
+    if (status == SC_OK)
+        status = sc_read_frame(r, &frame, err);
     if (status == SC_OK)
         status = sc_query_frame_info(frame, &info, err);
-    if (status == SC_OK)
-        status = sc_query_renderer_info(r, &out->stats, err);
     if (status == SC_OK) {
         out->frame_ms = cli_median(times, frames);
         double iters = 0;

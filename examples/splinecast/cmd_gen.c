@@ -34,7 +34,9 @@ const char gen_keys_usage[] =
     "KEYS, exactly one of:\n"
     "  --key KEY...       variant keys in canonical form (docs/variant-key.md)\n"
     "  --scene SCENE      the keys SCENE's surfaces need (one per degree pair,\n"
-    "                     rationality and trimming)\n"
+    "                     rationality and trimming; a key whose outputs are\n"
+    "                     shade.aov also without aov: a renderer draws with\n"
+    "                     that one and reads frames back with the other)\n"
     "  --family LO..HI    bez keys of every degree pair LO..HI x LO..HI, rational\n"
     "                     and not\n"
     "with --scene and --family:\n"
@@ -93,7 +95,7 @@ static int parse_iters(const char *text, int *iters, int max)
  * scene could not be read or drawn (`render` refuses a surface no program
  * draws). */
 static int add_scene_keys(const char *path, const char *like, const int *iters, int niters,
-                          gen_keys *set)
+                          int drawing_keys, gen_keys *set)
 {
     sc_scene_id scene;
     sc_scene_info info;
@@ -108,6 +110,16 @@ static int add_scene_keys(const char *path, const char *like, const int *iters, 
             status = sc_query_surface_key(scene, s, &desc, &key, &err);
             if (status == SC_OK)
                 add_key(set, &key);
+            /* For gen: a renderer's frames write the AOVs on demand only
+             * (sc_renderer_desc.aovs), so it draws with the key without
+             * them; audit measures the scene keys alone. */
+            size_t n = status == SC_OK ? strlen(key.text) : 0;
+            if (drawing_keys && n > 14 && !strcmp(key.text + n - 14, "-out.shade.aov")) {
+                desc.outputs = SC_OUTPUT_SHADE;
+                status = sc_query_surface_key(scene, s, &desc, &key, &err);
+                if (status == SC_OK)
+                    add_key(set, &key);
+            }
         }
     sc_destroy_scene(scene);
     return status == SC_OK ? 0 : cli_report(&err);
@@ -200,7 +212,7 @@ int gen_parse_keys(const char *cmd, int argc, char **argv, gen_keys *set, int *f
         }
     }
     if (status == 0 && scene_path)
-        status = add_scene_keys(scene_path, like, iters, niters, set);
+        status = add_scene_keys(scene_path, like, iters, niters, !strcmp(cmd, "gen"), set);
     if (status == 0 && family)
         status = add_family_keys(cmd, family, like, iters, niters, set);
     if (status == 0 && iters_given && ngiven > 0) {

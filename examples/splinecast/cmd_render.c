@@ -233,6 +233,9 @@ int cmd_render(int argc, char **argv)
     }
     fprintf(stderr, "render: %s\n", ctx_info.description);
     desc.accuracy_view = &view;
+    /* Its frames are read back (images, AOVs, the stats line's covered
+     * pixels): each timed frame writes the AOVs, and the last is read. */
+    desc.aovs = SC_AOVS_ALWAYS;
     if (sc_make_renderer(ctx, scene, &desc, &renderer, &err) != SC_OK) {
         cli_report(&err);
         goto done;

@@ -114,6 +114,7 @@ int sc_renderer_draw_app(sc_renderer *r, const float view[16], const float proj[
     gl->Disable(GL_BLEND);
     gl->PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     int status;
+    r->frame_aovs = !colour_frames(&r->desc);   /* the application's frame: no AOVs */
     if (r->desc.ert == SC_TERMINATION_PEEL) {
         /* Peeling needs depth buffers of its own: the frame is peeled in
          * the renderer's target at the viewport's size, then its colour

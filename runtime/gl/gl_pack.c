@@ -160,6 +160,8 @@ int sc_renderer_create_packed(const sc_gl *gl, const sc_pack *pack, const sc_ren
             goto fail;
         }
         r->kinds[s] = r->keys[s].kind;
+        if (colour_frames(&r->desc))   /* drawn without AOVs (gl_render_private.h) */
+            r->keys[s].outputs &= ~SCG_OUTPUT_AOV;
         if (sc_program_for_key(r->programs, &r->keys[s], &r->surface_program[s], err) != SC_OK)
             goto fail;
     }

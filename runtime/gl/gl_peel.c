@@ -396,7 +396,7 @@ static void draw_list(sc_renderer *r, int list, int ncommands, int prepass, GLui
         r->draw_calls++;
     }
     for (int g = 0; !prepass && g < ncommands; g++) {
-        GLuint program = sc_program_gl_name(r->programs, r->groups[g].program);
+        GLuint program = sc_program_gl_name(r->programs, sc_render_group_program(r, g, 0));
         if (program != *current) {
             gl->UseProgram(program);
             *current = program;

@@ -384,6 +384,10 @@ int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_d
                 r->keys[s].outputs &= ~SCG_OUTPUT_SHADE;   /* gl_deferred.c shades */
         }
         r->kinds[s] = r->keys[s].kind;
+        /* Drawn without AOVs: the AOV set is compiled when first asked
+         * for (gl_render.c). */
+        if (colour_frames(&r->desc))
+            r->keys[s].outputs &= ~SCG_OUTPUT_AOV;
         if (sc_program_for_key(r->programs, &r->keys[s], &r->surface_program[s], err) != SC_OK)
             goto fail;
     }
@@ -505,6 +509,8 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
     scg_key key;
     sc_prepare_surface_key(&r->scene->surfaces[surface], &r->desc,
                            r->choices ? &r->choices[surface] : NULL, &key);
+    if (colour_frames(&r->desc))
+        key.outputs &= ~SCG_OUTPUT_AOV;
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
     sc_patch_list old = r->patches[surface];
@@ -539,7 +545,8 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
 {
     stats->programs = r->ngroups;
     for (int g = 0; g < r->ngroups; g++)
-        stats->programs += r->groups[g].inside.id != 0;
+        stats->programs += (r->groups[g].inside.id != 0) + (r->groups[g].aov.id != 0) +
+                           (r->groups[g].aov_inside.id != 0);
     stats->hulls = r->hulls.count;
     stats->triangles = r->hulls.nindices / 3;
     stats->gpu_bytes = r->data.bytes + r->hull_bytes + r->colour_bytes;

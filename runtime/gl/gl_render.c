@@ -21,18 +21,18 @@
 
 /* The attachments the programs write: the contract's fragment outputs
  * that the view's keys declare, at their locations. */
-static void target_formats(const sc_render_desc *d, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
+static void target_formats(const sc_renderer *r, GLenum formats[SC_GL_TARGET_MAX_COLOURS])
 {
-    unsigned outputs = view_outputs(d);
+    unsigned outputs = view_outputs(&r->desc);
     memset(formats, 0, sizeof(GLenum) * SC_GL_TARGET_MAX_COLOURS);
 #define X(ID, location, name, type, output, format, miss, clear) \
     if (outputs & SCG_OUTPUT_##output)                          \
         formats[location] = GL_##format;
     SCG_FRAG_OUTS(X)
 #undef X
-    /* Colour only: the colour attachment alone (manual early termination
-     * then reads the depth buffer). */
-    if (d->colour_only)
+    /* A frame without AOVs: the colour attachment alone (manual early
+     * termination then reads the depth buffer). */
+    if (!r->frame_aovs)
         for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++)
             if (i != SCG_FRAG_OUT_COLOUR)
                 formats[i] = 0;
@@ -124,15 +124,37 @@ static void order_hulls(sc_renderer *r, int n)
     qsort(items, (size_t)n, sizeof *items, by_order);
 }
 
-/* The program for hulls of group g that hold the eye (see `group`). */
+/* The program for hulls of group g that hold the eye (see `group`), of
+ * the frame's set. */
 static int inside_program(sc_renderer *r, int g, sc_error *err)
 {
     group *gr = &r->groups[g];
-    if (gr->inside.id)
+    int aov = colour_frames(&r->desc) && r->frame_aovs;
+    sc_program *inside = aov ? &gr->aov_inside : &gr->inside;
+    if (inside->id)
         return SC_OK;
-    scg_key key = *sc_program_key(r->programs, gr->program);
+    scg_key key = *sc_program_key(r->programs, aov ? gr->aov : gr->program);
     key.ert = SCG_ERT_NONE;
-    return sc_program_for_key(r->programs, &key, &gr->inside, err);
+    return sc_program_for_key(r->programs, &key, inside, err);
+}
+
+/* colour_frames: the programs that write the AOVs too, compiled when a
+ * frame first asks for the AOVs (reading back, picking), so that a viewer
+ * that only draws never compiles them. */
+static int aov_programs(sc_renderer *r, sc_error *err)
+{
+    double t0 = sc_now();
+    for (int g = 0; g < r->ngroups; g++) {
+        group *gr = &r->groups[g];
+        if (gr->aov.id)
+            continue;
+        scg_key key = *sc_program_key(r->programs, gr->program);
+        key.outputs |= SCG_OUTPUT_AOV;
+        if (sc_program_for_key(r->programs, &key, &gr->aov, err) != SC_OK)
+            return SC_FAIL;
+    }
+    r->compile_ms += 1e3 * (sc_now() - t0);
+    return SC_OK;
 }
 
 /* Appends hull k to the frame's index list and to the last draw call when
@@ -162,9 +184,8 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
                                (GLsizeiptr)(nidx - first) * 4, r->frame_indices + first);
     for (int i = 0; i < nruns; i++) {
         const draw_run *run = &r->runs[i];
-        const group *gr = &r->groups[run->group];
-        GLuint program = sc_program_gl_name(
-            r->programs, run->inside && gr->inside.id ? gr->inside : gr->program);
+        GLuint program =
+            sc_program_gl_name(r->programs, sc_render_group_program(r, run->group, run->inside));
         if (program != *current) {
             gl->UseProgram(program);
             *current = program;
@@ -202,7 +223,7 @@ static void refresh_nearest(sc_renderer *r)
     r->tile_far = sc_realloc(r->tile_far, (size_t)tw * (size_t)th, sizeof(float));
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
     /* Rows bottom-up, as the window, and so back into sc_nearest_t. */
-    if (r->desc.colour_only)
+    if (!r->frame_aovs)
         gl->GetTextureImage(r->target.depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                             (GLsizei)((size_t)w * (size_t)h * sizeof(float)), r->uvt);
     else
@@ -234,7 +255,7 @@ static void refresh_nearest(sc_renderer *r)
         const float *cosine = r->cosine + (size_t)y * (size_t)w;
         for (int x = 0; x < w; x++) {
             float t, depth;
-            if (r->desc.colour_only) {
+            if (!r->frame_aovs) {
                 /* A colour-only frame has no distances: the depth buffer's
                  * window depth back to the depth along the view (the
                  * inverse of the projection), made larger by more than
@@ -346,8 +367,9 @@ int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err)
     const sc_gl *gl = r->gl;
     int manual = manual_ert(r->desc.ert);
     GLenum formats[SC_GL_TARGET_MAX_COLOURS];
-    target_formats(&r->desc, formats);
-    if (r->target.width != width || r->target.height != height) {
+    target_formats(r, formats);
+    if (r->target.width != width || r->target.height != height ||
+        memcmp(r->target.formats, formats, sizeof formats)) {
         sc_gl_target_destroy(gl, &r->target);
         sc_gl_target_desc td = {.width = width, .height = height};
         memcpy(td.formats, formats, sizeof td.formats);
@@ -371,9 +393,13 @@ int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err)
     return SC_OK;
 }
 
-int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
+/* One frame for cam, writing the AOVs when aovs is 1. */
+static int draw_frame(sc_renderer *r, const sc_camera *cam, int aovs, sc_error *err)
 {
     const sc_gl *gl = r->gl;
+    r->frame_aovs = aovs || !colour_frames(&r->desc);
+    if (colour_frames(&r->desc) && r->frame_aovs && aov_programs(r, err) != SC_OK)
+        return SC_FAIL;
     if (sc_render_begin_target(r, cam->width, cam->height, err) != SC_OK)
         return SC_FAIL;
     r->camera = *cam;
@@ -403,6 +429,16 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
                "still in front of their pixels' hits: those pixels keep the best hit found",
                SC_PEEL_MAX_LAYERS, r->peel_pending);
     return sc_gl_check(gl, "drawing the hulls", err);
+}
+
+int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err)
+{
+    return draw_frame(r, cam, 0, err);
+}
+
+int sc_renderer_draw_aovs(sc_renderer *r, const sc_camera *cam, sc_error *err)
+{
+    return draw_frame(r, cam, 1, err);
 }
 
 void sc_render_eye_projection(const float view[16], const float proj[16], float vp[16])
@@ -496,7 +532,8 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
         gl->BindTextureUnit(SCG_UNIT_NEAREST_T, r->nearest_texture);
     }
     for (int g = 0; g < r->ngroups; g++) {
-        sc_program programs[2] = {r->groups[g].program, r->groups[g].inside};
+        sc_program programs[2] = {sc_render_group_program(r, g, 0),
+                                  sc_render_group_program(r, g, 1)};
         for (int i = 0; i < 2; i++) {
             GLuint program = sc_program_gl_name(r->programs, programs[i]);
             if (!program)
@@ -610,11 +647,15 @@ int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err)
     const sc_gl_target *t = &r->target;
     if (!t->framebuffer)
         return sc_fail(err, NULL, 0, "nothing drawn yet");
-    if (r->desc.colour_only)
-        return sc_fail(err, NULL, 0, "the renderer was made colour-only: its frames write the "
-                                     "colour and depth alone, no AOVs (surface ids, uv, "
-                                     "distance, point, normal, iterations) to read back; make "
-                                     "it without colour_only to read frames");
+    /* A frame drawn without AOVs: drawn again with them, at its camera. */
+    if (!r->frame_aovs) {
+        sc_camera cam = r->camera;
+        if (!(cam.fovy_deg > 0))
+            return sc_fail(err, NULL, 0, "no frame of the renderer's own to draw again with "
+                                         "its AOVs (sc_renderer_draw first)");
+        if (sc_renderer_draw_aovs(r, &cam, err) != SC_OK)
+            return SC_FAIL;
+    }
     int n = t->width * t->height;
     sc_aov own;
     sc_aov *a = aov ? aov : &own;

@@ -61,9 +61,13 @@ typedef struct sc_render_desc {
     int deferred;           /* terrains: the intersection programs write the
                                AOVs only, and a full-screen pass shades from
                                them (gl_deferred.c) */
-    int colour_only;        /* shaded frames that write colour and depth, no
-                               AOVs (view_outputs); not read back; manual
-                               termination reads the depth buffer */
+    int aovs_on_demand;     /* shaded frames (not deferred) of
+                               sc_renderer_draw and sc_renderer_draw_app
+                               write colour and depth alone, with programs
+                               compiled without the AOVs (colour_frames);
+                               sc_renderer_draw_aovs, and sc_renderer_read
+                               after such a frame, draw with the AOVs.
+                               0: every frame writes them */
     int time_intersection;  /* the frames' hull draws between two glFinish,
                                timed (sc_render_stats.intersect_ms) */
 } sc_render_desc;
@@ -116,6 +120,9 @@ void sc_renderer_destroy(sc_renderer *r);
 
 /* Draws one frame for cam (its size is the image size) and waits for it. */
 int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err);
+/* The same, writing the AOVs whatever desc.aovs_on_demand says (the
+ * programs that write them compiled on first use). */
+int sc_renderer_draw_aovs(sc_renderer *r, const sc_camera *cam, sc_error *err);
 /* Draws into the framebuffer bound in the current context (an
  * application's) with its viewport, depth buffer and matrices (column-major
  * float[16]: world to eye; a perspective projection), writing the hits'
@@ -124,7 +131,10 @@ int sc_renderer_draw(sc_renderer *r, const sc_camera *cam, sc_error *err);
 int sc_renderer_draw_app(sc_renderer *r, const float view[16], const float proj[16],
                          sc_error *err);
 /* The last frame: the image of the view (RGBA, allocated here) and, when
- * aov is not NULL, its AOVs (allocated here, with iteration counts). */
+ * aov is not NULL, its AOVs (allocated here, with iteration counts). A
+ * last frame that wrote no AOVs (desc.aovs_on_demand) is first drawn
+ * again at its camera with them (sc_renderer_draw_aovs), once: that frame
+ * is then the last. */
 int sc_renderer_read(sc_renderer *r, sc_image *img, sc_aov *aov, sc_error *err);
 
 /* The nearest distances so far as the programs of the last frame's last

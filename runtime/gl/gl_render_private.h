@@ -69,16 +69,23 @@ static inline int manual_ert(sc_ray_termination mode)
     return mode == SC_TERMINATION_MANUAL || mode == SC_TERMINATION_MANUAL_BOTH;
 }
 
-/* The outputs a render's programs write: the shaded colour, the AOVs (the
- * read-back needs them) and the view's image; a colour-only renderer's
- * programs the colour alone (and depth, which every program writes; manual
- * early termination then takes its nearest distances from the depth
- * buffer). */
+/* The outputs a render's programs write when the frame writes the AOVs:
+ * the shaded colour, the AOVs (the read-back needs them) and the view's
+ * image. */
 static inline unsigned view_outputs(const sc_render_desc *d)
 {
-    if (d->colour_only)
-        return SCG_OUTPUT_SHADE;
     return SCG_OUTPUT_SHADE | SCG_OUTPUT_AOV | view_image_output(d->view);
+}
+
+/* With desc.aovs_on_demand, the shaded view's frames (not deferred, which
+ * shades from the AOVs) write the colour and depth alone unless asked for
+ * the AOVs (sc_renderer_draw_aovs, or a read-back after such a frame):
+ * their programs are the drawing keys less SCG_OUTPUT_AOV (and depth,
+ * which every program writes; manual early termination then takes its
+ * nearest distances from the depth buffer). */
+static inline int colour_frames(const sc_render_desc *d)
+{
+    return d->aovs_on_demand && d->view == SC_SHOW_SHADE && !d->deferred;
 }
 
 /* The hulls drawn with one program. */
@@ -89,6 +96,9 @@ typedef struct group {
      * which both the manual test (t < 1 on the hull) and depth_greater
      * assume is not so. Compiled when a frame first needs it. */
     sc_program inside;
+    /* colour_frames: program and inside with the AOVs as well, for the
+     * frames that write them; compiled when a frame first needs them. */
+    sc_program aov, aov_inside;
 } group;
 
 /* One draw call of a frame. */
@@ -149,6 +159,9 @@ struct sc_renderer {
      * batches before the current one left it (R32F, the target's size). */
     GLuint nearest_texture;
     sc_camera camera;        /* of the last frame */
+    int frame_aovs;          /* the frame being drawn (then the last one)
+                                writes the AOVs; always 1 unless
+                                colour_frames */
     int draw_calls, program_switches, culled, readbacks;  /* of the last frame */
     int outside;             /* of the last frame: hulls outside the view */
     /* The programs' count of intersections run (SCG_BUFFER_COUNTERS), zeroed
@@ -250,8 +263,19 @@ void sc_render_eye_projection(const float view[16], const float proj[16], float 
 int sc_render_hulls(sc_renderer *r, const double eye[3], const double fwd[3], const float vp[16],
                     float footprint, int own_target, sc_error *err);
 
+/* The program group g's hulls are drawn with in the frame being drawn
+ * (r->frame_aovs picks the set): its `inside` sibling for inside hulls
+ * when that was compiled, else its own. */
+static inline sc_program sc_render_group_program(const sc_renderer *r, int g, int inside)
+{
+    const group *gr = &r->groups[g];
+    int aov = colour_frames(&r->desc) && r->frame_aovs;
+    sc_program own = aov ? gr->aov : gr->program, in = aov ? gr->aov_inside : gr->inside;
+    return inside && in.id ? in : own;
+}
+
 /* The renderer's own target at width × height (made again when the size
- * changed), bound and cleared, GL_FRAMEBUFFER_SRGB enabled. */
+ * or r->frame_aovs's attachments changed), bound and cleared, GL_FRAMEBUFFER_SRGB enabled. */
 int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err);
 
 /* Depth peeling (gl_peel.c): draws r->items[0, n) (no hull holding the

@@ -442,6 +442,20 @@ int sc_query_program_info(sc_program_id program, sc_program_info *info, sc_error
 
 /* ---- rendering -------------------------------------------------------- */
 
+/* sc_renderer_desc.aovs. SC_AOVS_ON_DEMAND: the shaded view's frames of
+ * sc_draw and sc_draw_gl write the colour and depth alone, with programs
+ * compiled without the AOVs (manual early termination then takes its
+ * nearest distances from the depth buffer); sc_render draws with them, and
+ * sc_read_frame and sc_pick after a frame without them draw it again at
+ * its camera with them, once (that frame is then the last). The AOVs'
+ * programs are compiled when first needed. The other views and deferred
+ * shading are drawn from the AOVs: every frame writes them.
+ * SC_AOVS_ALWAYS: every frame writes them (for measuring what they cost). */
+typedef enum sc_aovs {
+    SC_AOVS_ON_DEMAND = 0,
+    SC_AOVS_ALWAYS = 1,
+} sc_aovs;
+
 /* Zero means default in every field (the defaults of `splinecast render`). */
 typedef struct sc_renderer_desc {
     sc_hull_split hull_split;
@@ -506,13 +520,9 @@ typedef struct sc_renderer_desc {
      * (sc_renderer_info.intersect_ms); the two waits cost a stall, so this
      * is for benchmarks (`bench --peak`). */
     int time_intersection;
-    /* 1: shaded frames write the colour and depth alone, no AOVs (surface
-     * ids, uv, distance, point, normal, iterations): for drawing with
-     * sc_draw or sc_draw_gl, not for reading back (sc_read_frame, sc_render
-     * and sc_pick then fail, saying so); manual early termination then
-     * takes the nearest distances from the depth buffer. Needs the shaded
-     * view, not deferred. 0: every frame writes the AOVs. */
-    int colour_only;
+    /* Which frames write the AOVs (surface ids, uv, distance, point,
+     * normal, iterations) besides the colour and depth. */
+    sc_aovs aovs;
 } sc_renderer_desc;
 
 /* Writes what a renderer made with desc would upload for the scene —
@@ -651,14 +661,15 @@ typedef struct sc_camera_desc {
  * and eye and target, when given, differ. */
 int sc_check_camera(const sc_camera_desc *camera, sc_error *err);
 
-/* Draws one frame, waits for it and reads it back: the image of the view
- * and its AOVs, with iteration counts. sc_draw followed by sc_read_frame. */
+/* Draws one frame with its AOVs, waits for it and reads it back: the image
+ * of the view and its AOVs, with iteration counts. */
 int sc_render(sc_renderer_id renderer, const sc_camera_desc *camera, sc_frame_id *out,
               sc_error *err);
 /* Draws one frame and waits for it, reading nothing back: what a frame
  * costs, for timing. */
 int sc_draw(sc_renderer_id renderer, const sc_camera_desc *camera, sc_error *err);
-/* The image and AOVs of the renderer's last frame (sc_draw first). */
+/* The image and AOVs of the renderer's last frame (sc_draw first; a frame
+ * drawn without AOVs is drawn again with them: sc_renderer_desc.aovs). */
 int sc_read_frame(sc_renderer_id renderer, sc_frame_id *out, sc_error *err);
 
 /* The application's view of one frame (sc_draw_gl): OpenGL's
