@@ -20,15 +20,6 @@
 enum { UNIT_SURFACE = 5, UNIT_UVT = 6 };
 _Static_assert(SCG_RECORD_TEXELS == 4, "the fragment program's record stride");
 
-static const char *vertex_source =
-    "#version 450 core\n"
-    "// One triangle that covers the viewport.\n"
-    "void main()\n"
-    "{\n"
-    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
-    "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
-    "}\n";
-
 /* The fragment program: a head, the de Casteljau steps unrolled (runtime
  * loops over an indexed array cost llvmpipe several times the whole
  * intersection), and a tail. */
@@ -106,7 +97,7 @@ int sc_deferred_shade(sc_renderer *r, const double eye[3], sc_error *err)
         return sc_fail(err, NULL, 0, "deferred shading is for quartic terrains");
     if (!r->deferred_program) {
         char *fragment = fragment_source();
-        const char *sources[4] = {vertex_source, NULL, NULL, fragment};
+        const char *sources[4] = {sc_fullscreen_vertex_glsl, NULL, NULL, fragment};
         int status = sc_peer_link(gl, sources, &r->deferred_program, err);
         free(fragment);
         if (status != SC_OK)

@@ -14,15 +14,6 @@
 
 #include "peer_private.h"
 
-static const char *vertex_source =
-    "#version 450 core\n"
-    "// One triangle that covers the viewport.\n"
-    "void main()\n"
-    "{\n"
-    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
-    "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
-    "}\n";
-
 /* The chains unrolled: in a loop, llvmpipe masks every assignment with the
  * loop's execution mask and runs at a third of the rate. Unrolled, the body
  * must still fit the CPU's instruction cache: 2 chains of 256 do (docs/speed.md
@@ -63,7 +54,7 @@ int sc_gl_measure_peak(const sc_gl *gl, sc_gl_peak *p, sc_error *err)
     char *fragment = fragment_source(p->chains, p->length);
     if (!fragment)
         return sc_fail(err, NULL, 0, "out of memory");
-    const char *sources[4] = {vertex_source, NULL, NULL, fragment};
+    const char *sources[4] = {sc_fullscreen_vertex_glsl, NULL, NULL, fragment};
     GLuint program = 0;
     int status = sc_peer_link(gl, sources, &program, err);
     free(fragment);

@@ -177,15 +177,6 @@ static const char *tile_far_source =
     "    imageStore(sc_tile_far, tile, vec4(far));\n"
     "}\n";
 
-static const char *resolve_vertex_source =
-    "#version 450 core\n"
-    "// One triangle that covers the viewport.\n"
-    "void main()\n"
-    "{\n"
-    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
-    "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
-    "}\n";
-
 static const char *resolve_fragment_source =
     "#version 450 core\n"
     "layout(binding = 6) uniform sampler2D sc_best;\n"
@@ -196,27 +187,6 @@ static const char *resolve_fragment_source =
     "        discard;\n"
     "    gl_FragDepth = depth;\n"
     "}\n";
-
-static int link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err)
-{
-    GLuint shader = gl->CreateShader(GL_COMPUTE_SHADER);
-    gl->ShaderSource(shader, 1, &source, NULL);
-    gl->CompileShader(shader);
-    GLuint prog = gl->CreateProgram();
-    gl->AttachShader(prog, shader);
-    gl->LinkProgram(prog);
-    gl->DeleteShader(shader);
-    GLint ok = 0;
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
-        gl->DeleteProgram(prog);
-        return sc_fail(err, NULL, 0, "depth peeling: a compute program does not link: %s", log);
-    }
-    *program = prog;
-    return SC_OK;
-}
 
 static GLuint texture_2d(const sc_gl *gl, GLenum format, int w, int h)
 {
@@ -274,11 +244,11 @@ static int peel_resources(sc_renderer *r, sc_error *err)
         char vertex[1024];
         prepass_vertex_source(vertex, sizeof vertex);
         const char *pre[4] = {vertex, NULL, NULL, prepass_fragment_source};
-        const char *resolve[4] = {resolve_vertex_source, NULL, NULL, resolve_fragment_source};
+        const char *resolve[4] = {sc_fullscreen_vertex_glsl, NULL, NULL, resolve_fragment_source};
         if (sc_peer_link(gl, pre, &r->peel_program, err) != SC_OK ||
             sc_peer_link(gl, resolve, &r->resolve_program, err) != SC_OK ||
-            link_compute(gl, cull_source, &r->cull_program, err) != SC_OK ||
-            link_compute(gl, tile_far_source, &r->tile_far_program, err) != SC_OK)
+            sc_peer_link_compute(gl, cull_source, &r->cull_program, err) != SC_OK ||
+            sc_peer_link_compute(gl, tile_far_source, &r->tile_far_program, err) != SC_OK)
             return SC_FAIL;
         gl->GenQueries(SC_PEEL_QUERIES, r->peel_queries);
         if (!r->peel_vao)
@@ -622,7 +592,7 @@ int sc_peel_composite(sc_renderer *r, const int viewport[4], sc_error *err)
 {
     const sc_gl *gl = r->gl;
     if (!r->composite_program) {
-        const char *sources[4] = {resolve_vertex_source, NULL, NULL, composite_fragment_source};
+        const char *sources[4] = {sc_fullscreen_vertex_glsl, NULL, NULL, composite_fragment_source};
         if (sc_peer_link(gl, sources, &r->composite_program, err) != SC_OK)
             return SC_FAIL;
     }

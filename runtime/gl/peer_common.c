@@ -55,19 +55,19 @@ static int compile(const sc_gl *gl, GLenum stage, const char *source, GLuint *ou
         char log[1024] = "";
         gl->GetShaderInfoLog(shader, sizeof log, NULL, log);
         gl->DeleteShader(shader);
-        return sc_fail(err, NULL, 0, "peer shader (stage 0x%x) does not compile: %s", stage, log);
+        return sc_fail(err, NULL, 0, "built-in shader (stage 0x%x) does not compile: %s", stage, log);
     }
     *out = shader;
     return SC_OK;
 }
 
-int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program, sc_error *err)
+/* Compiles the n stages given (a NULL source: absent) and links them. */
+static int link_stages(const sc_gl *gl, int n, const GLenum *stages, const char *const *sources,
+                       GLuint *program, sc_error *err)
 {
-    static const GLenum stages[4] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER,
-                                     GL_TESS_EVALUATION_SHADER, GL_FRAGMENT_SHADER};
-    GLuint shaders[4] = {0};
+    GLuint shaders[5] = {0};
     *program = 0;
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < n; i++)
         if (sources[i] && compile(gl, stages[i], sources[i], &shaders[i], err) != SC_OK) {
             for (int k = 0; k < i; k++)
                 if (shaders[k])
@@ -75,11 +75,11 @@ int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program,
             return SC_FAIL;
         }
     GLuint prog = gl->CreateProgram();
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < n; i++)
         if (shaders[i])
             gl->AttachShader(prog, shaders[i]);
     gl->LinkProgram(prog);
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < n; i++)
         if (shaders[i])
             gl->DeleteShader(shaders[i]);
     GLint ok = 0;
@@ -88,11 +88,33 @@ int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program,
         char log[1024] = "";
         gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
         gl->DeleteProgram(prog);
-        return sc_fail(err, NULL, 0, "peer program does not link: %s", log);
+        return sc_fail(err, NULL, 0, "built-in program does not link: %s", log);
     }
     *program = prog;
-    return sc_gl_check(gl, "linking a peer program", err);
+    return sc_gl_check(gl, "linking a built-in program", err);
 }
+
+int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program, sc_error *err)
+{
+    static const GLenum stages[4] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER,
+                                     GL_TESS_EVALUATION_SHADER, GL_FRAGMENT_SHADER};
+    return link_stages(gl, 4, stages, sources, program, err);
+}
+
+int sc_peer_link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err)
+{
+    static const GLenum stage = GL_COMPUTE_SHADER;
+    return link_stages(gl, 1, &stage, &source, program, err);
+}
+
+const char *const sc_fullscreen_vertex_glsl =
+    "#version 450 core\n"
+    "// One triangle that covers the viewport.\n"
+    "void main()\n"
+    "{\n"
+    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
+    "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
+    "}\n";
 
 void sc_peer_upload_colours(sc_peer *p)
 {

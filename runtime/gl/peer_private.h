@@ -30,6 +30,12 @@ extern const char *const sc_peer_fragment_glsl;
 
 /* Compiles and links the stages given (NULL: absent); err has the log. */
 int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program, sc_error *err);
+/* The same for one compute program. */
+int sc_peer_link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err);
+/* A vertex stage drawing one triangle over the whole viewport (3 vertices,
+ * no attributes): the full-screen passes' (peak, deferred shading, depth
+ * peeling's resolve and composite). */
+extern const char *const sc_fullscreen_vertex_glsl;
 /* Frame set-up: the target at the camera's size, cleared as the renderer
  * clears it; the view-projection matrix relative to the eye and the eye
  * set on the program; the colour texture bound. */
