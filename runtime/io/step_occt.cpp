@@ -40,6 +40,12 @@ extern "C" {
 #include <Message_PrinterOStream.hxx>
 #include <Message_ProgressIndicator.hxx>
 #include <STEPCAFControl_Reader.hxx>
+#include <ShapeAlgo.hxx>
+#include <ShapeAlgo_AlgoContainer.hxx>
+#include <ShapeAlgo_ToolContainer.hxx>
+#include <ShapeFix_Face.hxx>
+#include <ShapeFix_Shape.hxx>
+#include <ShapeFix_Wire.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 #include <StepData_StepModel.hxx>
@@ -80,9 +86,26 @@ private:
     double seconds_;
 };
 
-/* Open CASCADE writes its messages to stdout, where the command line's
- * output is read by scripts: its printers are removed once. */
-void quiet_library()
+/* The shape healing a STEP transfer runs, less the repair of edges whose
+ * p-curve crosses itself (ShapeFix_Wire::FixSelfIntersectingEdge): it
+ * intersects each p-curve with itself through polygon interference, which
+ * on a 7 KB hostile file took 6.8 s inside one face, where no deadline
+ * can stop it. Loop validation checks the loops we build from the
+ * p-curves anyway (docs/step.md). */
+class healing_tools : public ShapeAlgo_ToolContainer {
+public:
+    Handle(ShapeFix_Shape) FixShape() const override
+    {
+        Handle(ShapeFix_Shape) fix = ShapeAlgo_ToolContainer::FixShape();
+        fix->FixFaceTool()->FixWireTool()->FixSelfIntersectingEdgeMode() = 0;
+        return fix;
+    }
+};
+
+/* Set up once: Open CASCADE writes its messages to stdout, where the
+ * command line's output is read by scripts, so its printers are removed;
+ * and the transfer's healing is ours (healing_tools). */
+void setup_library()
 {
     static bool done = false;
     if (done)
@@ -90,6 +113,8 @@ void quiet_library()
     done = true;
     const Handle(Message_Messenger) &m = Message::DefaultMessenger();
     m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    ShapeAlgo::Init();
+    ShapeAlgo::AlgoContainer()->SetToolContainer(new healing_tools);
 }
 
 /* One face to convert: the face placed by its instance, its colour, and
@@ -513,7 +538,7 @@ extern "C" int sc_occt_read_step(const char *text, size_t size, const char *name
                                  const sc_step_scan *scan, double max_seconds, sc_scene *scene,
                                  sc_error *err)
 {
-    quiet_library();
+    setup_library();
     Handle(deadline_progress) progress = new deadline_progress(max_seconds);
     sc_budget budget = {0, 0};
     int face_index = 0;
@@ -601,7 +626,7 @@ bool ends_with(const char *s, const char *ext)
 extern "C" int sc_occt_face_props(const char *path, sc_occt_face **faces, int *nfaces,
                                   sc_error *err)
 {
-    quiet_library();
+    setup_library();
     *faces = NULL;
     *nfaces = 0;
     try {
