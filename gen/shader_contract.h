@@ -73,10 +73,11 @@
     /* unit ray to the nearest surfaces drawn so far (ert1/ert2 keys) */             \
     X(NEAREST_T, 4, "sc_nearest_t", "sampler2D", 1)
 
-/* Shader storage: the fragment programs count, in one std430 block at
- * binding SCG_BUFFER_COUNTERS, the intersections they run (fragments past
- * the early-termination test), with an atomic add on the GPU: the figure
- * `rays_per_covered_pixel` divides it by the pixels that hit a surface. */
+/* Shader storage: the fragment programs that write the AOVs count, in one
+ * std430 block at binding SCG_BUFFER_COUNTERS, the intersections they run
+ * (fragments past the early-termination test), with an atomic add on the
+ * GPU: the figure `rays_per_covered_pixel` divides it by the pixels that
+ * hit a surface. Programs without the AOVs (shaded frames) count nothing. */
 #define SCG_BUFFER_COUNTERS 0
 #define SCG_COUNTERS_BLOCK "sc_counters"
 #define SCG_COUNTER_INTERSECTIONS "sc_intersections"

@@ -48,10 +48,16 @@ int bench_finish(sc_renderer_id r, double *times, int frames, double warm_up_ms,
     sc_frame_id frame = {0};
     sc_frame_info info;
     /* The counts of the last timed frame, before the read draws it again
-     * with the AOVs where it had none (and compiles their programs). */
+     * with the AOVs where it had none (and compiles their programs); the
+     * intersections, which only frames with the AOVs count, of that
+     * drawing then (the same camera and hulls). */
     int status = sc_query_renderer_info(r, &out->stats, err);
     if (status == SC_OK)
         status = sc_read_frame(r, &frame, err);
+    sc_renderer_info counted;
+    if (status == SC_OK && out->stats.intersections < 0 &&
+        (status = sc_query_renderer_info(r, &counted, err)) == SC_OK)
+        out->stats.intersections = counted.intersections;
     if (status == SC_OK)
         status = sc_query_frame_info(frame, &info, err);
     if (status == SC_OK) {

@@ -559,8 +559,8 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->culled_hulls = r->culled;
     stats->readbacks = r->readbacks;
     stats->peel_layers = r->peel_layers;
-    stats->intersections = 0;
-    if (r->counter_buffer) {
+    stats->intersections = -1;
+    if (r->frame_aovs && r->counter_buffer) {
         GLuint count = 0;
         r->gl->GetNamedBufferSubData(r->counter_buffer, 0, sizeof count, &count);
         stats->intersections = count;

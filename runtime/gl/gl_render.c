@@ -518,14 +518,18 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     gl->BindVertexArray(r->vertex_array);
     sc_gpu_data_bind(gl, &r->data);
     gl->BindTextureUnit(SCG_UNIT_COLOURS, r->colour_texture);
-    /* The intersections of this frame, counted from zero. */
-    if (!r->counter_buffer) {
-        gl->CreateBuffers(1, &r->counter_buffer);
-        gl->NamedBufferData(r->counter_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_READ);
+    /* The intersections of this frame, counted from zero by the programs
+     * that write the AOVs (the others count nothing). */
+    if (r->frame_aovs) {
+        if (!r->counter_buffer) {
+            gl->CreateBuffers(1, &r->counter_buffer);
+            gl->NamedBufferData(r->counter_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_READ);
+        }
+        static const GLuint zero = 0;
+        gl->ClearNamedBufferData(r->counter_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                 &zero);
+        gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, SCG_BUFFER_COUNTERS, r->counter_buffer);
     }
-    static const GLuint zero = 0;
-    gl->ClearNamedBufferData(r->counter_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    gl->BindBufferBase(GL_SHADER_STORAGE_BUFFER, SCG_BUFFER_COUNTERS, r->counter_buffer);
     if (manual) {
         static const float far = 3.0e38f;
         gl->ClearTexImage(r->nearest_texture, 0, GL_RED, GL_FLOAT, &far);

@@ -96,7 +96,8 @@ typedef struct sc_render_stats {
                                programs read them from */
     long long intersections; /* fragment programs that ran the intersection
                                (past the early-termination test), counted on
-                               the GPU by an atomic add */
+                               the GPU by an atomic add in frames that write
+                               the AOVs; -1 after a frame without them */
     double intersect_ms;    /* with desc.time_intersection, the last frame's
                                hull draws, from a glFinish before them to
                                one after; -1 otherwise */

@@ -165,7 +165,8 @@ struct sc_renderer {
     int draw_calls, program_switches, culled, readbacks;  /* of the last frame */
     int outside;             /* of the last frame: hulls outside the view */
     /* The programs' count of intersections run (SCG_BUFFER_COUNTERS), zeroed
-     * at the start of each frame and read only when asked for. */
+     * at the start of each frame that writes the AOVs (only their programs
+     * count) and read only when asked for. */
     GLuint counter_buffer;
     /* desc.time_intersection: the hull draws of sc_renderer_draw's frames
      * (not an application's, which may time its own) between two glFinish

@@ -570,7 +570,11 @@ typedef struct sc_renderer_info {
                                   region of trimmed ones (a packed
                                   renderer's: the packed scene's) */
     long long intersections;   /* of the last frame: fragment programs that
-                                  ran the intersection, counted on the GPU */
+                                  ran the intersection, counted on the GPU
+                                  by the programs that write the AOVs; -1
+                                  after a frame without them (sc_draw's and
+                                  sc_draw_gl's under SC_AOVS_ON_DEMAND:
+                                  sc_read_frame draws it again with them) */
     /* Of the last frame, with sc_renderer_desc.time_intersection (-1
      * otherwise): the hull draws that run the intersection programs, timed
      * from a glFinish before them to one after, and by a GL_TIME_ELAPSED

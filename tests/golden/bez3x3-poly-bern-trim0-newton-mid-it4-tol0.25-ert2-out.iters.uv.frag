@@ -34,10 +34,6 @@ layout(binding = 4) uniform sampler2D sc_nearest_t;
 // Colour attachments, by location (docs/emitter.md).
 layout(location = 5) out vec4 sc_view_iters;
 layout(location = 6) out vec4 sc_view_uv;
-// Intersections run, counted by the runtime per frame.
-layout(std430, binding = 0) buffer sc_counters {
-    uint sc_intersections;
-};
 
 // Early ray termination: the ray parameter of the nearest surface so far, in
 // units of sc_ray_dir.
@@ -1094,7 +1090,6 @@ void main()
     // The hull's front face (t = 1) lies behind the nearest surface so far.
     if (sc_t_limit < 1.0)
         discard;
-    atomicAdd(sc_intersections, 1u);
     bool hit;
     vec2 uv;
     float t;

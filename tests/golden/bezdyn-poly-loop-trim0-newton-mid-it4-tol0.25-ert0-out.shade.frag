@@ -31,10 +31,6 @@ layout(binding = 2) uniform samplerBuffer sc_records;
 
 // Colour attachments, by location (docs/emitter.md).
 layout(location = 0) out vec4 sc_colour;
-// Intersections run, counted by the runtime per frame.
-layout(std430, binding = 0) buffer sc_counters {
-    uint sc_intersections;
-};
 
 // The intersection, printed from the optimised IR (558 instructions):
 // one statement per computed value, named hint_N after IR value N.
@@ -530,7 +526,6 @@ vec3 sc_shade_headlight(vec3 base_colour, vec3 facing_normal, vec3 to_eye)
 
 void main()
 {
-    atomicAdd(sc_intersections, 1u);
     bool hit;
     vec2 uv;
     float t;
