@@ -276,7 +276,11 @@ typedef struct sc_keys_desc {
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of
- * keys; at most `capacity` are written to keys (which may be NULL). */
+ * keys; at most `capacity` are written to keys (which may be NULL). With
+ * the default outputs these are the keys of frames that write the AOVs; a
+ * renderer's shaded frames (SC_AOVS_ON_DEMAND) draw with the same keys
+ * less `aov`: ask again with outputs = SC_OUTPUT_SHADE for those (`gen
+ * --scene` writes both). */
 int sc_query_scene_keys(sc_scene_id scene, const sc_keys_desc *desc, sc_key *keys,
                         int capacity, int *count, sc_error *err);
 
