@@ -33,11 +33,15 @@ int sc_make_peer(sc_context_id ctx, sc_scene_id scene, const sc_peer_desc *desc,
     if (!(desc->tolerance_px == 0 || (desc->tolerance_px >= 0.001 && desc->tolerance_px <= 100)))
         return sc_api_invalid(err, "sc_peer_desc.tolerance_px", PROBLEM_RANGE,
                               "%g (0 for the default, or 0.001 to 100 pixels)", desc->tolerance_px);
+    if (desc->aovs != SC_AOVS_ON_DEMAND && desc->aovs != SC_AOVS_ALWAYS)
+        return sc_api_invalid(err, "sc_peer_desc.aovs", PROBLEM_RANGE,
+                              "SC_AOVS_ON_DEMAND (0) or SC_AOVS_ALWAYS (1)");
     if (sc_api_make_current(c, err) != SC_OK)
         return SC_FAIL;
     sc_peer_config config = {
         .type = desc->kind == SC_PEER_GLU ? SC_PEER_TYPE_GLU : SC_PEER_TYPE_TESS,
         .tolerance_px = desc->tolerance_px ? desc->tolerance_px : 0.1,
+        .aovs_on_demand = desc->aovs == SC_AOVS_ON_DEMAND,
     };
     peer_object *p = sc_alloc(1, sizeof *p);
     p->context = c;
@@ -101,7 +105,7 @@ int sc_draw_peer(sc_peer_id peer, const sc_camera_desc *camera, sc_error *err)
 {
     sc_camera cam;
     peer_object *p = peer_and_camera(peer, camera, &cam, err);
-    return p ? sc_peer_draw(p->peer, &cam, err) : SC_FAIL;
+    return p ? sc_peer_draw(p->peer, &cam, 0, err) : SC_FAIL;
 }
 
 int sc_read_peer_frame(sc_peer_id peer, sc_frame_id *out, sc_error *err)

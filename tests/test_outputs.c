@@ -1,7 +1,8 @@
 /* test_outputs.c — outputs on demand: the default renderer's sc_draw
  * writes colour and depth alone, running the rays a renderer that always
  * writes the AOVs runs, and a read or a pick after it draws the frame again
- * with them, the always-AOV frame. */
+ * with them, the always-AOV frame; the tessellation peers' frames the
+ * same. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +11,7 @@
 #include "gl_context_util.h"
 #include "gl_render_private.h"
 #include "io.h"
+#include "peer_private.h"
 #include "shader_contract.h"
 #include "splinecast.h"
 #include "test.h"
@@ -202,5 +204,62 @@ TEST(outputs_colour_only_image_matches)
     sc_image_free(&colour);
     sc_image_free(&again);
     sc_aov_free(&aov);
+    sc_scene_free(&scene);
+}
+
+/* A peer's frame without the AOVs: the colour attachment alone drawn, with
+ * the picture of the frame that writes them (the same triangles and
+ * shading); a read draws it again with the AOVs, and gets what a peer
+ * that always writes them reads. For GLU's triangles and the tessellation
+ * shaders. */
+TEST(outputs_peer_colour_only_frames)
+{
+    const char *why = "";
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    const sc_gl *gl = sc_gl_context_gl(ctx);
+    sc_scene scene;
+    sc_error err = {0};
+    CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
+    sc_camera cam = {.eye = {0, -8, 3}, .target = {0, 0, 0.8}, .fovy_deg = 30,
+                     .width = 96, .height = 72};
+    for (int type = 0; type < 2; type++) {
+        sc_image images[2] = {{0}}, colour = {0};
+        sc_aov aovs[2] = {{0}};
+        for (int on_demand = 0; on_demand < 2; on_demand++) {
+            sc_peer_config config = {.type = type ? SC_PEER_TYPE_TESS : SC_PEER_TYPE_GLU,
+                                     .tolerance_px = 0.5, .aovs_on_demand = on_demand};
+            sc_peer *p;
+            CHECK_INT(sc_peer_create(gl, &scene, &config, &p, &err), SC_OK);
+            CHECK_INT(sc_peer_update(p, &cam, &err), SC_OK);
+            CHECK_INT(sc_peer_draw(p, &cam, 0, &err), SC_OK);
+            CHECK_INT(p->frame_aovs, !on_demand);
+            if (on_demand)
+                CHECK_INT(sc_gl_target_read_image(gl, &p->target, SCG_FRAG_OUT_COLOUR, &colour,
+                                                  &err),
+                          SC_OK);
+            CHECK_INT(sc_peer_read(p, &images[on_demand], &aovs[on_demand], &err), SC_OK);
+            CHECK_INT(p->frame_aovs, 1);
+            sc_peer_destroy(p);
+        }
+        int n = cam.width * cam.height, differ = 0, differ_read = 0, covered = 0, surfaces = 0;
+        CHECK(images[0].pixels && images[1].pixels && colour.pixels);
+        for (int q = 0; images[0].pixels && images[1].pixels && colour.pixels && q < n; q++) {
+            differ += memcmp(images[0].pixels + 4 * q, colour.pixels + 4 * q, 3) != 0;
+            differ_read += memcmp(images[0].pixels + 4 * q, images[1].pixels + 4 * q, 3) != 0;
+            covered += aovs[0].surface[q] >= 0;
+            surfaces += aovs[0].surface[q] != aovs[1].surface[q];
+        }
+        CHECK(covered > n / 10);
+        CHECK_INT(differ, 0);
+        CHECK_INT(differ_read, 0);
+        CHECK_INT(surfaces, 0);
+        for (int i = 0; i < 2; i++) {
+            sc_image_free(&images[i]);
+            sc_aov_free(&aovs[i]);
+        }
+        sc_image_free(&colour);
+    }
     sc_scene_free(&scene);
 }

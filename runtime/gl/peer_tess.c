@@ -189,8 +189,8 @@ int sc_peer_tess_create(sc_peer *p, sc_error *err)
     tess_state *t = sc_alloc(1, sizeof *t);
     p->kind = t;
     double t0 = sc_now();
-    const char *sources[4] = {vertex_glsl, control_glsl, evaluation_glsl, sc_peer_fragment_glsl};
-    if (sc_peer_link(gl, sources, &p->program, err) != SC_OK)
+    const char *stages[3] = {vertex_glsl, control_glsl, evaluation_glsl};
+    if (sc_peer_link_programs(p, stages, err) != SC_OK)
         return SC_FAIL;
     p->stats.compile_ms = 1e3 * (sc_now() - t0);
     GLint max_level = 64;

@@ -821,6 +821,10 @@ typedef struct sc_peer_desc {
     sc_peer_kind kind;         /* GLU */
     double tolerance_px;       /* chordal error bound in pixels of the view
                                   (0.1) */
+    sc_aovs aovs;              /* as sc_renderer_desc.aovs: by default a
+                                  frame writes the colour and depth alone,
+                                  and sc_read_peer_frame draws it again with
+                                  the AOVs */
 } sc_peer_desc;
 
 int sc_make_peer(sc_context_id ctx, sc_scene_id scene, const sc_peer_desc *desc,
@@ -832,7 +836,8 @@ void sc_destroy_peer(sc_peer_id peer);
 int sc_update_peer(sc_peer_id peer, const sc_camera_desc *camera, sc_error *err);
 /* Draws the data of the last update and waits for it. */
 int sc_draw_peer(sc_peer_id peer, const sc_camera_desc *camera, sc_error *err);
-/* The image and AOVs of the peer's last frame (no iteration counts). */
+/* The image and AOVs of the peer's last frame (no iteration counts); a
+ * frame drawn without the AOVs is drawn again with them first. */
 int sc_read_peer_frame(sc_peer_id peer, sc_frame_id *out, sc_error *err);
 
 typedef struct sc_peer_info {
