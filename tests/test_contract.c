@@ -232,10 +232,7 @@ TEST(contract_gpu_vertex_matches_attributes)
 
 TEST(contract_render_target_has_the_output_table)
 {
-    const char *why = "";
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);

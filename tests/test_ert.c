@@ -70,10 +70,7 @@ static const sc_camera stack_camera = {.eye = {0, 0, 4.5}, .target = {0, 0, 0},
 
 TEST(ert_modes_stack_same_image)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
@@ -136,10 +133,7 @@ TEST(ert_modes_stack_same_image)
  * batch, front to back) runs fewer, and never fewer than the covered pixels. */
 TEST(ert_counts_intersections)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
@@ -171,10 +165,7 @@ TEST(ert_counts_intersections)
  * mode; and a camera looking at it draws it (the test is not vacuous). */
 TEST(ert_turned_away_draws_nothing)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene(scene_path("stack_4.obj"), &scene, &err), SC_OK);
@@ -212,10 +203,7 @@ TEST(ert_turned_away_draws_nothing)
  * cleared value) on most of the image. */
 TEST(ert_nearest_from_earlier_batches)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene(scene_path("stack_16.obj"), &scene, &err), SC_OK);
@@ -260,10 +248,7 @@ TEST(ert_nearest_from_earlier_batches)
  * one matches the CPU reference. */
 TEST(ert_orders_mixed_same_image)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const char *path = scene_path("mixed_keys.obj");
     sc_scene scene;
     sc_error err = {0};
@@ -311,10 +296,7 @@ TEST(ert_orders_mixed_same_image)
  * image is the reference's. */
 TEST(ert_eye_inside_hull)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const char *path = scene_path("stack_4.obj");
     sc_scene scene;
     sc_error err = {0};

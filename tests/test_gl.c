@@ -65,10 +65,7 @@ TEST(gl_backend_names)
  * the driver (answers only the context can give). */
 TEST(gl_loader_table)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     int resolved = 0;
 #define COUNT_(type, name, major, minor) resolved += gl->name != NULL;
@@ -202,10 +199,7 @@ TEST(gl_triangle_osmesa) { triangle_check(SC_BACKEND_OSMESA); }
 /* Errors come back as records, not crashes. */
 TEST(gl_target_bad_size)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_gl_target target;
     sc_error err = {0};
@@ -389,10 +383,7 @@ static void add_patch(sc_scene *scene, int du, int dv, double x0, int rational)
  * surfaces, three different (degree, rational) combinations. */
 TEST(gl_render_distinct_keys)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_scene_init(&scene);
     add_patch(&scene, 2, 3, 0.0, 0);
@@ -483,10 +474,7 @@ TEST(gl_render_far_from_origin)
  * hulls of the patch show in different colours. */
 TEST(gl_render_hull_view)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_scene_init(&scene);
     add_patch(&scene, 3, 3, 0.0, 0);
@@ -535,10 +523,7 @@ TEST(gl_render_hull_view)
  * degrees and on a trimmed one. */
 TEST(gl_render_keys_are_the_scene_keys)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     static const char *const scenes[] = {"mixed.obj", "trim_nine.obj"};
     for (int i = 0; i < 2; i++) {
         char path[1024];
@@ -641,10 +626,7 @@ TEST(gl_render_torus_degree12)
  * surface's share. */
 TEST(gl_data_update_one_surface)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_scene_init(&scene);
@@ -733,10 +715,7 @@ static int against_fresh_and_reference(const sc_gl *gl, sc_renderer *r, const sc
  * vertex when its hulls grew in number past what the buffer holds. */
 TEST(gl_render_update_one_surface)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_error err = {0};

@@ -41,10 +41,7 @@ static char *insert_before_end(const char *text, const char *line, int *at)
  * linker's message; the cache stays usable. */
 TEST(gl_fault_program_rejected)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_load_default_scene(&scene, &err), SC_OK);
@@ -152,10 +149,7 @@ TEST(gl_fault_memory_budget)
  * size in the message, the error queue drained. */
 TEST(gl_fault_out_of_memory)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     GLuint buffer;
     gl->CreateBuffers(1, &buffer);

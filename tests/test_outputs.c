@@ -146,10 +146,7 @@ TEST(outputs_on_demand_frames)
  * draws it again with them, at the same camera, and gets the same image. */
 TEST(outputs_colour_only_image_matches)
 {
-    const char *why = "";
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_error err = {0};
@@ -214,10 +211,7 @@ TEST(outputs_colour_only_image_matches)
  * shaders. */
 TEST(outputs_peer_colour_only_frames)
 {
-    const char *why = "";
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_error err = {0};

@@ -89,10 +89,7 @@ static int meets_targets(const sc_aov *ref, const sc_aov *test, const char *what
  * depth buffer, as the programs that write gl_FragDepth do. */
 TEST(peel_teapot_against_reference_and_manual)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const char *path = TEST_TEAPOT32;
     sc_scene scene;
     sc_error err = {0};
@@ -159,10 +156,7 @@ TEST(peel_teapot_against_reference_and_manual)
  * against the reference and draws the manual mode's surfaces. */
 TEST(peel_trimmed_and_stacks_against_reference)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     static const char *const names[] = {"trim_hole.obj", "trim_nested.obj", "trim_nine.obj",
                                         "trim_star.obj", "trim_touch.obj",  "trimmed_hole.obj",
                                         "stack_2.obj",   "stack_16.obj",    "stack_128.obj"};
@@ -225,10 +219,7 @@ TEST(peel_trimmed_and_stacks_against_reference)
  * early termination. */
 TEST(peel_eye_inside_hull_falls_back)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const char *path = scene_path("stack_4.obj");
     sc_scene scene;
     sc_error err = {0};
@@ -266,10 +257,7 @@ TEST(peel_eye_inside_hull_falls_back)
  * program was needed. */
 TEST(peel_draw_app_composes)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_error err = {0};

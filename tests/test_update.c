@@ -377,10 +377,7 @@ enum { PATCH_BYTES = 16 * 16 + 4 * 16, VERTEX_BYTES = 13 * 4 };
  * number, as the later ones move), from a whole close-up too. */
 static void update_every_surface(sc_ray_termination ert)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_error err = {0};
@@ -442,10 +439,7 @@ TEST(gl_render_update_every_surface_peel) { update_every_surface(SC_TERMINATION_
  * its vertices once; a frame with no update sends nothing. */
 TEST(gl_render_update_bytes_proportional)
 {
-    const char *why;
-    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
-    if (!ctx)
-        SKIP("no GL context: %s", why);
+    TEST_NEED_GL_CONTEXT(ctx);
     const sc_gl *gl = sc_gl_context_gl(ctx);
     sc_scene scene;
     sc_error err = {0};
