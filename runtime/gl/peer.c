@@ -78,6 +78,19 @@ int sc_peer_draw(sc_peer *p, const sc_camera *cam, int aovs, sc_error *err)
     return status == SC_OK ? sc_gl_check(gl, "drawing a peer's frame", err) : SC_FAIL;
 }
 
+int sc_peer_read(sc_peer *p, sc_image *img, sc_aov *aov, sc_error *err)
+{
+    if (!p->target.framebuffer)
+        return sc_fail(err, NULL, 0, "nothing drawn yet");
+    /* A frame drawn without the AOVs: drawn again with them, at its camera. */
+    if (!p->frame_aovs) {
+        sc_camera cam = p->camera;
+        if (sc_peer_draw(p, &cam, 1, err) != SC_OK)
+            return SC_FAIL;
+    }
+    return sc_peer_read_target(p, img, aov, err);
+}
+
 void sc_peer_stats_get(const sc_peer *p, sc_peer_stats *stats)
 {
     *stats = p->stats;

@@ -236,18 +236,12 @@ int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_e
 }
 
 
-int sc_peer_read(sc_peer *p, sc_image *img, sc_aov *aov, sc_error *err)
+int sc_peer_read_target(sc_peer *p, sc_image *img, sc_aov *aov, sc_error *err)
 {
     const sc_gl *gl = p->gl;
     const sc_gl_target *t = &p->target;
     if (!t->framebuffer)
         return sc_fail(err, NULL, 0, "nothing drawn yet");
-    /* A frame drawn without the AOVs: drawn again with them, at its camera. */
-    if (!p->frame_aovs) {
-        sc_camera cam = p->camera;
-        if (sc_peer_draw(p, &cam, 1, err) != SC_OK)
-            return SC_FAIL;
-    }
     size_t n = (size_t)t->width * (size_t)t->height;
     sc_aov own;
     sc_aov *a = aov ? aov : &own;

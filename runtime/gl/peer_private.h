@@ -50,6 +50,9 @@ extern const char *const sc_fullscreen_vertex_glsl;
  * frame's program (with the AOVs or not), its view-projection matrix
  * relative to the eye and the eye set; the colour texture bound. */
 int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_error *err);
+/* The target's image (RGBA) and AOVs as the last frame left them
+ * (sc_peer_read, which first draws a frame without the AOVs again). */
+int sc_peer_read_target(sc_peer *p, sc_image *img, sc_aov *aov, sc_error *err);
 /* The colours of the scene's surfaces into colour_buffer. */
 void sc_peer_upload_colours(sc_peer *p);
 
