@@ -126,6 +126,10 @@ TEST(outputs_on_demand_frames)
     sc_renderer_id r;
     CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.aovs = 2}, &r, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "aovs");
+    sc_peer_id peer;
+    CHECK_INT(sc_make_peer(ctx, scene, &(sc_peer_desc){.aovs = 2}, &peer, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "sc_peer_desc.aovs");
+    CHECK_INT(peer.id, 0);
     /* A debug view is drawn from the AOVs: its renderer keeps them. */
     drawn normal;
     CHECK_INT(draw_and_read(ctx, scene, (sc_renderer_desc){.show = SC_SHOW_NORMAL}, &cam, &normal,
@@ -137,6 +141,10 @@ TEST(outputs_on_demand_frames)
     sc_destroy_context(ctx);
     sc_destroy_scene(scene);
 }
+
+/* The teapot from its side, a little above, filling most of the image. */
+static const sc_camera teapot_side_view = {.eye = {0, -8, 3}, .target = {0, 0, 0.8},
+                                           .fovy_deg = 30, .width = 160, .height = 120};
 
 /* The colour-only frame's picture is the full frame's: its colour
  * attachment, read by the runtime's own means, against the shaded image
@@ -151,8 +159,7 @@ TEST(outputs_colour_only_image_matches)
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
-    sc_camera cam = {.eye = {0, -8, 3}, .target = {0, 0, 0.8}, .fovy_deg = 30,
-                     .width = 160, .height = 120};
+    sc_camera cam = teapot_side_view;
     sc_image full = {0}, colour = {0}, again = {0};
     sc_aov aov = {0};
     sc_render_desc desc = {0};
@@ -216,8 +223,7 @@ TEST(outputs_peer_colour_only_frames)
     sc_scene scene;
     sc_error err = {0};
     CHECK_INT(sc_read_scene("teapot", &scene, &err), SC_OK);
-    sc_camera cam = {.eye = {0, -8, 3}, .target = {0, 0, 0.8}, .fovy_deg = 30,
-                     .width = 96, .height = 72};
+    sc_camera cam = teapot_side_view;
     for (int type = 0; type < 2; type++) {
         sc_image images[2] = {{0}}, colour = {0};
         sc_aov aovs[2] = {{0}};
@@ -229,12 +235,16 @@ TEST(outputs_peer_colour_only_frames)
             CHECK_INT(sc_peer_update(p, &cam, &err), SC_OK);
             CHECK_INT(sc_peer_draw(p, &cam, 0, &err), SC_OK);
             CHECK_INT(p->frame_aovs, !on_demand);
+            /* Without the AOVs the target has the colour attachment alone. */
+            CHECK_INT(p->target.colour[SCG_FRAG_OUT_SURFACE] != 0, !on_demand);
+            CHECK_INT(p->target.colour[SCG_FRAG_OUT_NORMAL] != 0, !on_demand);
             if (on_demand)
                 CHECK_INT(sc_gl_target_read_image(gl, &p->target, SCG_FRAG_OUT_COLOUR, &colour,
                                                   &err),
                           SC_OK);
             CHECK_INT(sc_peer_read(p, &images[on_demand], &aovs[on_demand], &err), SC_OK);
             CHECK_INT(p->frame_aovs, 1);
+            CHECK(p->target.colour[SCG_FRAG_OUT_SURFACE] != 0);
             sc_peer_destroy(p);
         }
         int n = cam.width * cam.height, differ = 0, differ_read = 0, covered = 0, surfaces = 0;

@@ -77,19 +77,6 @@ int sc_gl_target_create(const sc_gl *gl, const sc_gl_target_desc *desc,
     return SC_OK;
 }
 
-void sc_gl_target_draw_buffers(const sc_gl *gl, const sc_gl_target *target, unsigned drawn)
-{
-    GLenum draw_buffers[SC_GL_TARGET_MAX_COLOURS];
-    int count = 0;
-    for (int i = 0; i < SC_GL_TARGET_MAX_COLOURS; i++) {
-        int on = target->formats[i] && (drawn >> i & 1u);
-        draw_buffers[i] = on ? GL_COLOR_ATTACHMENT0 + (GLenum)i : GL_NONE;
-        if (on)
-            count = i + 1;
-    }
-    gl->NamedFramebufferDrawBuffers(target->framebuffer, count, draw_buffers);
-}
-
 void sc_gl_target_destroy(const sc_gl *gl, sc_gl_target *target)
 {
     if (target->framebuffer)

@@ -31,9 +31,6 @@ typedef struct sc_gl_target {
 int sc_gl_target_create(const sc_gl *gl, const sc_gl_target_desc *desc,
                         sc_gl_target *target, sc_error *err);
 void sc_gl_target_destroy(const sc_gl *gl, sc_gl_target *target);
-/* Draws into the attachments whose bit is set in `drawn` alone (the
- * others GL_NONE, so left as they are); a target starts with all of them. */
-void sc_gl_target_draw_buffers(const sc_gl *gl, const sc_gl_target *target, unsigned drawn);
 /* Binds the framebuffer, sets the viewport, clears attachment i to clear[i]
  * (integer attachments to its values truncated) unless bit i of `uncleared`
  * is set, and depth to 1. */

@@ -175,11 +175,16 @@ static void depth_range(const sc_scene *scene, const sc_camera *cam, const doubl
 int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_error *err)
 {
     const sc_gl *gl = p->gl;
-    if (p->target.width != cam->width || p->target.height != cam->height) {
+    /* A frame without the AOVs has the colour attachment alone, as the
+     * renderer's own (made again when the size or the AOVs change). */
+    int has_aovs = p->target.formats[SCG_FRAG_OUT_SURFACE] != 0;
+    if (p->target.width != cam->width || p->target.height != cam->height || has_aovs != aovs) {
         sc_gl_target_destroy(gl, &p->target);
         sc_gl_target_desc td = {.width = cam->width, .height = cam->height};
         for (int i = 0; i < SCG_FRAG_OUT_ENTRIES; i++) {
             const scg_frag_out_info *o = &scg_frag_outs[i];
+            if (!aovs && o->location != SCG_FRAG_OUT_COLOUR)
+                continue;
             if (o->location == SCG_FRAG_OUT_COLOUR)
                 td.formats[o->location] = GL_SRGB8_ALPHA8;
             else if (o->location == SCG_FRAG_OUT_SURFACE)
@@ -214,14 +219,10 @@ int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_e
         memcpy(clear[o->location], o->clear_background ? background : o->clear, sizeof clear[0]);
         uncleared |= (unsigned)o->not_cleared << o->location;
     }
-    /* A frame without the AOVs draws into the colour attachment alone and
-     * leaves the others as they were. */
-    unsigned drawn = aovs ? ~0u : 1u << SCG_FRAG_OUT_COLOUR;
     p->frame_aovs = aovs;
     p->program = aovs ? p->aov_program : p->colour_program;
-    sc_gl_target_draw_buffers(gl, &p->target, drawn);
     gl->Enable(GL_FRAMEBUFFER_SRGB);
-    sc_gl_target_begin(gl, &p->target, clear, uncleared | ~drawn);
+    sc_gl_target_begin(gl, &p->target, clear, uncleared);
     gl->Enable(GL_DEPTH_TEST);
     gl->DepthFunc(GL_LESS);
     /* Open surfaces: both sides are seen. */

@@ -46,7 +46,7 @@ int sc_peer_link_compute(const sc_gl *gl, const char *source, GLuint *program, s
  * peeling's resolve and composite). */
 extern const char *const sc_fullscreen_vertex_glsl;
 /* Frame set-up: the target at the camera's size, cleared as the renderer
- * clears it (aovs 0: the colour and depth alone, the only ones drawn); the
+ * clears it (aovs 0: a target of the colour and depth alone); the
  * frame's program (with the AOVs or not), its view-projection matrix
  * relative to the eye and the eye set; the colour texture bound. */
 int sc_peer_begin(sc_peer *p, const sc_camera *cam, int aovs, float vp[16], sc_error *err);
