@@ -38,6 +38,7 @@ static const char *eval_words(scg_eval_form eval)
     case SCG_EVAL_DC: return "de Casteljau (Bezier) / de Boor (NURBS), unrolled";
     case SCG_EVAL_BASIS: return "Bernstein basis sums, unrolled";
     case SCG_EVAL_LOOP: return "generic, with runtime loops over the record's degrees";
+    case SCG_EVAL_POWER: return "power basis by Horner's rule in the iteration, de Casteljau for the hit";
     }
     return "?";
 }

@@ -48,7 +48,8 @@ static scg_value project(scg_isect *c, scg_value pt)
 
 /* Unrolled evaluation of the record's patch at (u, v) on control points
  * `pts` (Bézier) or on points fetched for the spans of (u, v) (NURBS, then
- * `project_points` says whether to project them). */
+ * `project_points` says whether to project them). The power form's keys
+ * come here for the hit point, which de Casteljau evaluates. */
 static void eval_unrolled(scg_isect *c, const scg_value *pts, bool project_points,
                           scg_value u, scg_value v, scg_value out[3])
 {
@@ -209,10 +210,18 @@ void scg_isect_eval_in_frame(scg_isect *c, scg_value uv, scg_value f[3])
         frame_from_euclidean(c, h, f);
         return;
     }
-    if (c->key->kind == SCG_PATCH_NURBS)
+    if (c->key->kind == SCG_PATCH_NURBS) {
         eval_unrolled(c, NULL, true, u, v, h);
-    else
+    } else if (c->key->eval == SCG_EVAL_POWER) {
+        scg_dir du, dv;
+        du.degree = c->p;
+        du.t = u;
+        dv.degree = c->q;
+        dv.t = v;
+        scg_eval_tensor_power(b, c->power, &du, &dv, h);
+    } else {
         eval_unrolled(c, c->proj, false, u, v, h);
+    }
     frame_from_projected(c, h, f);
 }
 
@@ -377,6 +386,10 @@ static void bezier_points(scg_isect *c, scg_value r0)
         scg_name(b, "Q");
         for (int k = 0; k < n; k++)
             c->proj[k] = project(c, c->pts[k]);
+        if (c->key->eval == SCG_EVAL_POWER) {
+            scg_name(b, "power");
+            scg_power_coefficients(b, c->proj, c->p, c->q, c->power);
+        }
         scg_name(b, NULL);
         if (!c->key->rational)
             for (int k = 0; k < n; k++)

@@ -44,6 +44,7 @@ typedef struct scg_isect {
     bool trimmed_by_method;
     scg_value pts[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];  /* Bézier: fetched */
     scg_value proj[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)]; /* Bézier: projected */
+    scg_value power[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)]; /* pow: proj's power form */
 } scg_isect;
 
 /* A method: moves (u, v) from uv0 and sets uv_var and iters_var (and

@@ -137,6 +137,66 @@ void scg_eval_tensor_basis(scg_builder *b, const scg_value *pts, const scg_dir *
     scg_name(b, NULL);
 }
 
+/* C(n, k) · Δ^k x[0] for k = 0 … n, stride apart in x and out. */
+static void power_along(scg_builder *b, const scg_value *x, int stride, int n, scg_value *out)
+{
+    scg_value diff[SCG_MAX_DEGREE + 1];
+    for (int i = 0; i <= n; i++)
+        diff[i] = x[i * stride];
+    long binom = 1;
+    for (int k = 0; k <= n; k++) {
+        out[k * stride] = k == 0 || binom == 1 ? diff[0]
+                                               : scg_mul(b, diff[0], scg_const_f(b, (float)binom));
+        binom = binom * (n - k) / (k + 1);
+        for (int i = 0; i < n - k; i++)
+            diff[i] = scg_sub(b, diff[i + 1], diff[i]);
+    }
+}
+
+void scg_power_coefficients(scg_builder *b, const scg_value *pts, int p, int q, scg_value *out)
+{
+    scg_value along_u[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];
+    for (int j = 0; j <= q; j++)
+        power_along(b, pts + j * (p + 1), 1, p, along_u + j * (p + 1));
+    for (int k = 0; k <= p; k++)
+        power_along(b, along_u + k, p + 1, q, out + k);
+}
+
+/* Σ c[k·stride] t^k by Horner's rule, and its derivative from the same
+ * sweep's partial sums s_k (d ← d·t + s_k), each under its own name. */
+static void horner(scg_builder *b, const scg_value *c, int stride, int n, scg_value t,
+                   const char *value_name, scg_value *value, const char *deriv_name,
+                   scg_value *deriv)
+{
+    scg_value partial[SCG_MAX_DEGREE + 1];
+    scg_name(b, value_name);
+    partial[n] = c[n * stride];
+    for (int k = n - 1; k >= 0; k--)
+        partial[k] = scg_add(b, scg_mul(b, partial[k + 1], t), c[k * stride]);
+    *value = partial[0];
+    if (deriv) {
+        scg_name(b, deriv_name);
+        scg_value d = partial[n];
+        for (int k = n - 1; k >= 1; k--)
+            d = scg_add(b, scg_mul(b, d, t), partial[k]);
+        *deriv = d;
+    }
+    scg_name(b, NULL);
+}
+
+void scg_eval_tensor_power(scg_builder *b, const scg_value *coef, const scg_dir *u,
+                           const scg_dir *v, scg_value out[3])
+{
+    int p = u->degree, q = v->degree;
+    scg_value rows[SCG_MAX_DEGREE + 1], drows[SCG_MAX_DEGREE + 1];
+    /* Each row (fixed power of v) becomes its value and u-derivative; then
+     * the column of row values gives S and Sv, that of derivatives Su. */
+    for (int l = 0; l <= q; l++)
+        horner(b, coef + l * (p + 1), 1, p, u->t, NULL, &rows[l], NULL, &drows[l]);
+    horner(b, rows, 1, q, v->t, "S", &out[0], "Sv", &out[2]);
+    horner(b, drows, 1, q, v->t, "Su", &out[1], NULL, NULL);
+}
+
 scg_value scg_span_search(scg_builder *b, scg_value t, scg_value knot_offset, scg_value n,
                           scg_value degree)
 {

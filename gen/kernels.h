@@ -42,6 +42,18 @@ void scg_eval_tensor_dc(scg_builder *b, const scg_value *pts, const scg_dir *u,
 void scg_eval_tensor_basis(scg_builder *b, const scg_value *pts, const scg_dir *u,
                            const scg_dir *v, scg_value out[3]);
 
+/* Power form (Bézier directions only). scg_power_coefficients turns the
+ * net into the coefficients of Σ a_kl u^k v^l, a_kl at out[l·(p+1) + k]:
+ * along each direction the k-th forward difference of the points times
+ * C(degree, k). scg_eval_tensor_power evaluates them and the partials by
+ * Horner's rule, value and derivative in one sweep. Far fewer operations
+ * than de Casteljau for low degrees; the coefficients grow with the degree
+ * (up to 2^degree times the points' size each way), so the rounding error
+ * does too (docs/compiler.md, "The power form"). */
+void scg_power_coefficients(scg_builder *b, const scg_value *pts, int p, int q, scg_value *out);
+void scg_eval_tensor_power(scg_builder *b, const scg_value *coef, const scg_dir *u,
+                           const scg_dir *v, scg_value out[3]);
+
 /* Index k of the knot span holding t (τ_k <= t < τ_{k+1}, clamped to
  * [p, n-1]) by binary search over the knot texture from knot_offset, as a
  * runtime loop. n = number of control points; ints p, n, knot_offset. */

@@ -10,7 +10,7 @@
 #include "key.h"
 
 static const char *const kind_names[] = {"bez", "nurbs", "tri"};
-static const char *const eval_names[] = {"dc", "bern", "loop"};
+static const char *const eval_names[] = {"dc", "bern", "loop", "pow"};
 /* Indexed by the options' enums; their DEFAULT values have no spelling,
  * since a key holds the value chosen. */
 static const char *const trim_names[] = {[SC_TRIM_FAST] = "fast", [SC_TRIM_CLIP] = "clip",
@@ -248,12 +248,12 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
         return field_error(err, text, 1, fields[1], "poly or rat");
     int eval = match_exact(fields[2], eval_names, COUNT(eval_names));
     if (eval < 0)
-        return field_error(err, text, 2, fields[2], "dc, bern or loop");
+        return field_error(err, text, 2, fields[2], "dc, bern, pow or loop");
     k.eval = (scg_eval_form)eval;
     if (dyn != (k.eval == SCG_EVAL_LOOP))
         return field_error(err, text, 2, fields[2],
                            "loop together with degrees dyn (the generic program), "
-                           "dc or bern with degrees UxV");
+                           "dc, bern or pow with degrees UxV");
     if (strcmp(fields[3], "trim0") == 0)
         k.trim = SC_TRIM_NONE;
     else {
@@ -340,13 +340,21 @@ int scg_key_check(const scg_key *key, sc_error *err)
     if (!tri && key->start == SC_START_SECURE)
         return sc_fail_key(err, text, "key %s: the secure starts (secure) are for "
                            "triangular patches (tri) only", text);
+    if (key->eval == SCG_EVAL_POWER && (key->deg_u > SC_MAX_POW_DEGREE ||
+                                        key->deg_v > SC_MAX_POW_DEGREE))
+        return sc_fail_key(err, text, "key %s: the power form (pow) goes up to degree %d: its "
+                           "rounding error grows about as 2^degree (dc has no such limit)",
+                           text, SC_MAX_POW_DEGREE);
+    if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_POWER)
+        return sc_fail_key(err, text, "key %s: the power form (pow) is for Bézier keys "
+                           "(bez…): a NURBS key evaluates the span it finds by de Boor", text);
     if (key->kind == SCG_PATCH_NURBS && key->eval == SCG_EVAL_BASIS)
         missing = "the basis form for NURBS (nurbs…-bern) is";
     bool subdivides = key->method == SC_METHOD_SUBDIV || key->method == SC_METHOD_BCLIP;
     if (!missing && subdivides && (key->kind != SCG_PATCH_BEZIER || key->eval == SCG_EVAL_LOOP))
         return sc_fail_key(err, text,
                            "%s cuts the record's Bézier points into pieces, so it needs an "
-                           "unrolled Bézier key (bez…, dc or bern)",
+                           "unrolled Bézier key (bez…, dc, bern or pow)",
                            method_names[key->method]);
     if (!missing && subdivides && key->start != SC_START_MID)
         return sc_fail_key(err, text,

@@ -37,9 +37,14 @@ typedef enum scg_patch_kind {
 typedef enum scg_eval_form {
     SCG_EVAL_DC = 0,          /* "dc": de Casteljau / de Boor, unrolled */
     SCG_EVAL_BASIS,           /* "bern": Bernstein basis sums, unrolled */
-    SCG_EVAL_LOOP             /* "loop": generic program, runtime loops over
+    SCG_EVAL_LOOP,            /* "loop": generic program, runtime loops over
                                  degrees read from the record; degrees are
                                  written "dyn" (bezdyn, nurbsdyn) */
+    SCG_EVAL_POWER            /* "pow": the iteration evaluates the power
+                                 basis by Horner's rule, its coefficients
+                                 computed once a pixel from the projected
+                                 net; the hit point by de Casteljau
+                                 (Bézier only) */
 } scg_eval_form;
 
 /* Trimming (docs/trimming.md) is the option's sc_trim_method

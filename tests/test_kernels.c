@@ -348,6 +348,15 @@ TEST(kernel_newton_bezier_degrees_basis)
     degree_sweep("bez", "bern", 1, 7, 1, 8, 50, 0.02, 0.01);
 }
 
+/* The power form to degree 6 (SC_MAX_POW_DEGREE): Newton converges as
+ * with de Casteljau (the same rays fail, as they are geometric), every
+ * converged hit within the bound, though its error grows with the degree
+ * (docs/compiler.md, "The power form"). */
+TEST(kernel_newton_bezier_degrees_power)
+{
+    degree_sweep("bez", "pow", 1, 6, 1, 8, 200, 0.02, 0.01);
+}
+
 /* De Boor with the span search: three spans per direction, so that the
  * sub-patches start in different spans and Newton crosses knots. */
 TEST(kernel_newton_nurbs_degrees)

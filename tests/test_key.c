@@ -139,6 +139,8 @@ TEST(key_method_combinations)
         {"nurbs3x3-poly-dc-trim0-subdiv-mid-it24-tol0.05-ert0-out.shade", "unrolled Bézier"},
         {"bez3x3-poly-dc-trim0-bclip-cp-it32-tol0.05-ert0-out.shade", "write 'mid'"},
         {"nurbs3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert0-out.shade", "unrolled Bézier"},
+        {"nurbs3x3-poly-pow-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "for Bézier keys"},
+        {"bez7x3-poly-pow-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "up to degree 6"},
     };
     for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
         scg_key k;
@@ -155,6 +157,8 @@ TEST(key_method_combinations)
         "nurbsdyn-rat-loop-clip3i16-broyden-mid-it6-tol0.05-ert0-out.shade",
         "bez3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert1-out.shade.aov",
         "nurbs3x3-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
+        "bez6x1-rat-pow-clip3i16-hybrid-view-it6-tol0.05-ert4-out.shade.aov",
+        "bez2x3-poly-pow-trim0-bclip-mid-it32-tol0.05-ert1-out.shade",
     };
     for (size_t i = 0; i < sizeof built / sizeof built[0]; i++) {
         scg_key k;

@@ -52,6 +52,27 @@ typedef enum sc_start {
                               inflection points, 1), iterated together */
 } sc_start;
 
+/* How an unrolled Bézier program evaluates the patch in its iteration
+ * (keys: dc, bern, pow). NURBS keys evaluate by de Boor and the generic
+ * program by its loops, whatever this says. */
+typedef enum sc_eval {
+    SC_EVAL_DEFAULT = 0,   /* pow where both degrees are at most
+                              SC_DEFAULT_POW_MAX_DEGREE, dc above */
+    SC_EVAL_DC,            /* de Casteljau */
+    SC_EVAL_BERN,          /* Bernstein basis sums */
+    SC_EVAL_POW            /* the power basis by Horner's rule, its
+                              coefficients computed once a pixel; the hit
+                              point by de Casteljau. Keys of a degree above
+                              SC_MAX_POW_DEGREE take dc */
+} sc_eval;
+
+/* The power form's rounding error grows about as 2^degree each way: on
+ * random patches (tests/test_kernels.c) it stays below 0.5 % of the
+ * tolerance up to degree 4 and reaches half of it at 7, where Newton also
+ * fails 2.5x as often as with dc (docs/compiler.md, "The power form"). */
+#define SC_DEFAULT_POW_MAX_DEGREE 4
+#define SC_MAX_POW_DEGREE 6
+
 /* How trimmed surfaces are trimmed (keys: fastNiC, clipNiC, leftNiC, trim0). */
 typedef enum sc_trim_method {
     SC_TRIM_DEFAULT = 0,   /* fast */
