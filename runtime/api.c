@@ -357,16 +357,21 @@ static int like_options(const char *like, sc_key_options *opts, sc_error *err)
         opts->method = key.method;
     if (!opts->outputs)
         opts->outputs = key.outputs;
-    if (key.eval == SCG_EVAL_BASIS)
-        opts->eval_basis = 1;
+    /* An unrolled Bézier key names its form; nurbs, loop and tri keys
+     * name none that the Bézier keys of the scene could take. */
+    if (!opts->eval && key.kind == SCG_PATCH_BEZIER && key.eval != SCG_EVAL_LOOP)
+        opts->eval = key.eval == SCG_EVAL_BASIS   ? SC_EVAL_BERN
+                     : key.eval == SCG_EVAL_POWER ? SC_EVAL_POW
+                                                  : SC_EVAL_DC;
     if (key.trim != SC_TRIM_NONE && !opts->trim_method) {
         opts->trim_method = key.trim;
         if (!opts->trim_iters)
             opts->trim_iters = key.trim_iters;
     }
-    if (opts->eval_basis && opts->nurbs_direct) {
-        sc_fail(err, NULL, 0, "evaluation form 'bern' cannot apply: Bernstein sums are for "
-                "Bézier patches, and these keys draw whole NURBS surfaces (nurbs)");
+    if ((opts->eval == SC_EVAL_BERN || opts->eval == SC_EVAL_POW) && opts->nurbs_direct) {
+        sc_fail(err, NULL, 0, "evaluation form '%s' cannot apply: it is for Bézier patches, "
+                "and these keys draw whole NURBS surfaces (nurbs)",
+                opts->eval == SC_EVAL_BERN ? "bern" : "pow");
         if (err)
             snprintf(err->key, sizeof err->key, "%s", like);
         return SC_FAIL;
@@ -388,6 +393,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
         sc_api_check_enum(desc->start, SC_START_VIEW + 1, "sc_keys_desc.start", err) ||
         sc_api_check_enum(desc->trim, SC_TRIM_NONE + 1, "sc_keys_desc.trim", err) ||
         sc_api_check_enum(desc->method, SC_METHOD_HYBRID + 1, "sc_keys_desc.method", err) ||
+        sc_api_check_enum(desc->eval, SC_EVAL_POW + 1, "sc_keys_desc.eval", err) ||
         sc_api_check_tolerance(desc->tolerance_px, "sc_keys_desc.tolerance_px", &opts->tol_milli, err))
         return SC_FAIL;
     if (desc->outputs & ~(unsigned)SCG_OUTPUT_ALL)
@@ -404,6 +410,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     opts->outputs = desc->outputs;
     opts->skip_undrawable = desc->skip_undrawable != 0;
     opts->method = desc->method;
+    opts->eval = desc->eval;
     return desc->like ? like_options(desc->like, opts, err) : SC_OK;
 }
 
@@ -477,17 +484,25 @@ int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err)
         if (parse_key(desc->like, &key, err) != SC_OK)
             return SC_FAIL;
     } else {
-        /* The key sc_surface_key gives such a patch under default options. */
+        /* The key sc_surface_key gives such a patch under default options,
+         * but with scg_key_default's method, Newton. */
         scg_key_default(&key, SCG_PATCH_BEZIER, 3, 3);
         key.ert = sc_key_ert(SC_TERMINATION_DEFAULT);
         key.outputs = SC_KEY_DEFAULT_OUTPUTS;
     }
+    /* Without like, or unrolling like's generic program, the evaluation
+     * form is the one sc_surface_key gives these degrees. */
+    bool default_form = !desc->like;
     if (desc->deg_u || desc->deg_v) {
         key.deg_u = desc->deg_u ? desc->deg_u : key.deg_u;
         key.deg_v = desc->deg_v ? desc->deg_v : key.deg_v;
-        if (key.eval == SCG_EVAL_LOOP)
+        if (key.eval == SCG_EVAL_LOOP) {
             key.eval = SCG_EVAL_DC;
+            default_form = true;
+        }
     }
+    if (default_form && key.kind == SCG_PATCH_BEZIER)
+        key.eval = sc_bezier_eval(SC_EVAL_DEFAULT, key.deg_u, key.deg_v);
     if (desc->rational)
         key.rational = desc->rational == 1;
     if (desc->max_iters)

@@ -212,6 +212,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
         sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
         sc_api_check_enum(d->method, SC_METHOD_HYBRID + 1, "sc_renderer_desc.method", err) ||
+        sc_api_check_enum(d->eval, SC_EVAL_POW + 1, "sc_renderer_desc.eval", err) ||
         sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
         return SC_FAIL;
     if (!(d->hull_tolerance >= 0 && d->hull_tolerance < 1))
@@ -234,6 +235,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->batch_hulls = d->batch_hulls;
     r->gpu_memory_budget = d->gpu_memory_budget;
     r->method = d->method;
+    r->eval = d->eval;
     r->deferred = d->deferred != 0;
     r->time_intersection = d->time_intersection != 0;
     if (d->aovs != SC_AOVS_ON_DEMAND && d->aovs != SC_AOVS_ALWAYS)

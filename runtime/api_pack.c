@@ -41,7 +41,7 @@ static int check_packed_desc(const sc_renderer_desc *d, sc_error *err)
                       : d->tolerance_px != 0 ? "tolerance_px" : d->show ? "show"
                       : d->generic ? "generic" : d->unroll_max_degree ? "unroll_max_degree"
                       : d->trim ? "trim" : d->trim_iters ? "trim_iters"
-                      : d->termination ? "termination" : d->method ? "method"
+                      : d->termination ? "termination" : d->method ? "method" : d->eval ? "eval"
                       : d->accuracy_px != 0 || d->accuracy_normal_deg != 0 ? "accuracy_px"
                       : NULL;
     if (fixed)

@@ -376,7 +376,10 @@ TEST(api_cli_keys_made_and_per_surface)
     sc_key key;
     /* Zero desc: the documented default key; then varied as gen --family. */
     CHECK_INT(sc_make_key(NULL, &key, &err), SC_OK);
-    CHECK_STR(key.text, "bez3x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(key.text, "bez3x3-poly-pow-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
+    /* The evaluation form follows the degrees: pow up to 4, dc above. */
+    CHECK_INT(sc_make_key(&(sc_key_desc){.deg_u = 5}, &key, &err), SC_OK);
+    CHECK_STR(key.text, "bez5x3-poly-dc-trim0-newton-cp-it6-tol0.05-ert1-out.shade.aov");
     const char *generic = "bezdyn-poly-loop-trim0-newton-mid-it4-tol0.25-ert0-out.shade";
     sc_key_desc desc = {.like = generic, .deg_u = 5, .deg_v = 2, .rational = 1, .max_iters = 9};
     CHECK_INT(sc_make_key(&desc, &key, &err), SC_OK);
@@ -394,7 +397,7 @@ TEST(api_cli_keys_made_and_per_surface)
     CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
     sc_keys_desc like = {.like = generic, .max_iters = 3};
     CHECK_INT(sc_query_surface_key(scene, 5, &like, &key, &err), SC_OK);
-    CHECK_STR(key.text, "bez3x3-poly-dc-trim0-newton-mid-it3-tol0.25-ert0-out.shade");
+    CHECK_STR(key.text, "bez3x3-poly-pow-trim0-newton-mid-it3-tol0.25-ert0-out.shade");
     sc_key all[2];
     int n;
     CHECK_INT(sc_query_scene_keys(scene, &like, all, 2, &n, &err), SC_OK);

@@ -291,7 +291,7 @@ TEST(audit_scene)
     char cmd[512], *out = NULL;
     snprintf(cmd, sizeof cmd, "%s audit --scene teapot", test_cli);
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov - FS: ");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov - FS: ");
     CHECK_CONTAINS(out, "hull-cp-colour - VS: 0 inst, ");
     int lines = 0;
     for (const char *p = out; *p; p++)

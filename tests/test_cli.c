@@ -143,6 +143,55 @@ TEST(cli_render_method_option)
     free(out);
 }
 
+/* --eval names the unrolled Bézier forms; a misspelt one is bad usage.
+ * The teapot (bicubic) draws with pow by default and with what is asked
+ * otherwise, every form as exact against the CPU reference. */
+TEST(cli_render_eval_option)
+{
+    char cmd[2048], *err = NULL, *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/e.png --size 16x16 --eval horner",
+             test_cli, test_tmpdir());
+    CHECK_INT(test_run(cmd, NULL, &err), 2);
+    CHECK_CONTAINS(err, "unknown evaluation form 'horner' (dc, bern or pow)");
+    free(err);
+    static const char *const forms[] = {"dc", "bern", "pow"};
+    for (int f = 0; f < 3; f++) {
+        snprintf(cmd, sizeof cmd, "%s render teapot -o %s/e.png --size 32x32 --eval %s --ref",
+                 test_cli, test_tmpdir(), forms[f]);
+        out = NULL;
+        CHECK_INT(test_run(cmd, &out, NULL), 0);
+        char program[128];
+        snprintf(program, sizeof program, "program bez3x3-poly-%s-trim0-hybrid-", forms[f]);
+        CHECK_CONTAINS(out, program);
+        CHECK_CONTAINS(out, "fail_pct=0 ");
+        free(out);
+    }
+}
+
+/* bench --eval A,B: both forms timed in one run, one `variant=eval` line
+ * each (the `variant=` fields, then eval=), and the ratio; with --method
+ * also a list, bad usage. */
+TEST(cli_bench_eval_side_by_side)
+{
+    char cmd[2048], *err = NULL, *out = NULL;
+    snprintf(cmd, sizeof cmd, "%s bench --eval dc,pow --size 32x32 --frames 1", test_cli);
+    int status = test_run(cmd, &out, &err);
+    if (status != 0 && err && strstr(err, "no GL"))
+        SKIP("no GL context: %s", err);
+    CHECK_INT(status, 0);
+    CHECK_CONTAINS(out, "bench variant=eval eval=dc frame_ms=");
+    CHECK_CONTAINS(out, "bench variant=eval eval=pow frame_ms=");
+    CHECK_CONTAINS(out, "bench frame_ratio_pow_over_dc=");
+    free(out);
+    free(err);
+    err = NULL;
+    snprintf(cmd, sizeof cmd, "%s bench --eval dc,pow --method newton,hybrid --frames 1",
+             test_cli);
+    CHECK_INT(test_run(cmd, NULL, &err), 2);
+    CHECK_CONTAINS(err, "--method and --eval compare one at a time");
+    free(err);
+}
+
 /* The view-dependent start (seed 000 §4.4) with the default method: the
  * teapot within the issue's 0.1 % of failing pixels (measured at 256×256:
  * 0.02 %; docs/stability.md). */
@@ -152,7 +201,7 @@ TEST(cli_render_view_start_teapot)
     snprintf(cmd, sizeof cmd, "%s render teapot -o %s/v.png --size 256x256 --init view --ref",
              test_cli, test_tmpdir());
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_CONTAINS(out, "program bez3x3-poly-dc-trim0-hybrid-view-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_CONTAINS(out, "program bez3x3-poly-pow-trim0-hybrid-view-it6-tol0.05-ert1-out.shade.aov");
     const char *f = out ? strstr(out, "fail_pct=") : NULL;
     CHECK(f != NULL);
     double fail = f ? atof(f + strlen("fail_pct=")) : 100;
@@ -174,7 +223,7 @@ TEST(cli_render_mid_start_teapot)
     snprintf(cmd, sizeof cmd, "%s render teapot -o %s/m.png --size 256x256 --init mid --ref",
              test_cli, test_tmpdir());
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    CHECK_CONTAINS(out, "program bez3x3-poly-dc-trim0-hybrid-mid-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_CONTAINS(out, "program bez3x3-poly-pow-trim0-hybrid-mid-it6-tol0.05-ert1-out.shade.aov");
     const char *f = out ? strstr(out, "fail_pct=") : NULL;
     CHECK(f != NULL);
     double fail = f ? atof(f + strlen("fail_pct=")) : 100;

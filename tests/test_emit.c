@@ -471,10 +471,10 @@ TEST(emit_gen_scene_keys)
     CHECK_INT(test_run(cmd, &out, NULL), 0);
     /* The teapot is 32 bicubic polynomial patches: one key per count, and
      * each without the AOVs (what a renderer draws with). */
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.aov.frag");
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.aov.frag");
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.frag");
-    CHECK_CONTAINS(out, "bez3x3-poly-dc-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.aov.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.aov.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.frag");
     CHECK_CONTAINS(out, "keys 4 files 6\n");
     free(out);
 }

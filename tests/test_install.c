@@ -289,12 +289,12 @@ TEST(install_api_keys_and_glsl)
      * polynomial patches. */
     sc_key keys[4];
     CHECK_INT(sc_query_scene_keys(teapot, NULL, keys, 4, &count, &err), SC_OK);
-    CHECK_STR(keys[0].text, "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0].text, "bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     sc_keys_desc desc = {.max_iters = 8, .tolerance_px = 0.5, .start = SC_START_CPMAP,
                          .outputs = SC_OUTPUT_SHADE | SC_OUTPUT_AOV,
                          .termination = SC_TERMINATION_NONE};
     CHECK_INT(sc_query_scene_keys(teapot, &desc, keys, 4, &count, &err), SC_OK);
-    CHECK_STR(keys[0].text, "bez3x3-poly-dc-trim0-hybrid-cp-it8-tol0.5-ert0-out.shade.aov");
+    CHECK_STR(keys[0].text, "bez3x3-poly-pow-trim0-hybrid-cp-it8-tol0.5-ert0-out.shade.aov");
     desc.max_iters = 1000;
     CHECK_INT(sc_query_scene_keys(teapot, &desc, keys, 4, &count, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "sc_keys_desc.max_iters is out of range: 1000");
@@ -400,6 +400,9 @@ TEST(install_api_render_against_reference)
     sc_renderer_desc bad = {.max_iters = 65};
     CHECK_INT(sc_make_renderer(ctx, scene, &bad, &renderer, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "sc_renderer_desc.max_iters is out of range: 65");
+    bad = (sc_renderer_desc){.eval = (sc_eval)(SC_EVAL_POW + 1)};
+    CHECK_INT(sc_make_renderer(ctx, scene, &bad, &renderer, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "sc_renderer_desc.eval");
     CHECK_INT(sc_make_renderer(ctx, scene, NULL, &renderer, &err), SC_OK);
 
     /* The renderer's key, asked of the specialization API twice: one

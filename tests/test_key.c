@@ -211,8 +211,8 @@ TEST(key_scene_keys)
     sc_error err;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 3);
-    CHECK_STR(keys[0], "bez2x2-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
-    CHECK_STR(keys[1], "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez2x2-rat-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[1], "bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     CHECK_STR(keys[2], "bezdyn-poly-loop-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_key_options opts;
@@ -226,6 +226,39 @@ TEST(key_scene_keys)
     CHECK_STR(keys[3], "nurbs3x3-poly-dc-trim0-hybrid-cp-it8-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_scene_free(&scene);
+}
+
+/* The evaluation form of unrolled Bézier keys: the power form by default
+ * up to SC_DEFAULT_POW_MAX_DEGREE and de Casteljau above; asked for, each
+ * form, the power form up to SC_MAX_POW_DEGREE; NURBS and generic keys
+ * keep theirs. */
+TEST(key_scene_keys_evaluation_form)
+{
+    static const struct { int p, q, nu; sc_eval asked; int nurbs; const char *form; } cases[] = {
+        {3, 3, 4, SC_EVAL_DEFAULT, 0, "pow"},   {4, 2, 5, SC_EVAL_DEFAULT, 0, "pow"},
+        {5, 3, 6, SC_EVAL_DEFAULT, 0, "dc"},    {3, 3, 4, SC_EVAL_DC, 0, "dc"},
+        {3, 3, 4, SC_EVAL_BERN, 0, "bern"},     {6, 6, 7, SC_EVAL_POW, 0, "pow"},
+        {7, 2, 8, SC_EVAL_POW, 0, "dc"},        {3, 3, 7, SC_EVAL_DEFAULT, 1, "dc"},
+        {12, 12, 13, SC_EVAL_POW, 0, "loop"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sc_surface s;
+        memset(&s, 0, sizeof s);
+        sc_surface_alloc(&s, cases[i].p, cases[i].q, cases[i].nu, cases[i].q + 1);
+        sc_key_options opts;
+        memset(&opts, 0, sizeof opts);
+        opts.eval = cases[i].asked;
+        opts.nurbs_direct = cases[i].nurbs;
+        scg_key key;
+        sc_surface_key(&s, &opts, &key);
+        char text[SCG_KEY_MAX], form[16] = "";
+        sscanf(scg_key_format(&key, text, sizeof text), "%*[^-]-%*[^-]-%15[^-]", form);
+        if (strcmp(form, cases[i].form) != 0)
+            TEST_FAIL_("case %zu: %s, expected the form %s", i, text, cases[i].form);
+        sc_error err;
+        CHECK_INT(scg_key_check(&key, &err), SC_OK);
+        sc_surface_free(&s);
+    }
 }
 
 /* Surfaces the GPU programs cannot draw: degree 17 in one direction (the
@@ -278,7 +311,7 @@ TEST(key_scene_keys_undrawable_surfaces)
     sc_set_logger(NULL, NULL);
     CHECK_INT(status, SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez2x2-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez2x2-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     CHECK_INT(w.count, 2);
     CHECK_CONTAINS(w.text, "parts.obj: surface 1 (part1): degree 17×1 is above 16");
@@ -298,7 +331,7 @@ TEST(key_scene_keys_teapot)
     int count;
     CHECK_INT(sc_scene_keys(&scene, NULL, &keys, &count, &err), SC_OK);
     CHECK_INT(count, 1);
-    CHECK_STR(keys[0], "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+    CHECK_STR(keys[0], "bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     free(keys);
     sc_scene_free(&scene);
 }

@@ -49,18 +49,18 @@ TEST(trimgpu_scene_keys)
     /* The outer polygon is of degree 1, the circle of degree 2. */
     sc_surface_key(&scene.surfaces[0], NULL, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),
-              "bez3x3-poly-dc-fast2i16-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+              "bez3x3-poly-pow-fast2i16-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     sc_key_options opts;
     memset(&opts, 0, sizeof opts);
     opts.trim_method = SC_TRIM_LEFT;
     opts.trim_iters = 24;
     sc_surface_key(&scene.surfaces[0], &opts, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),
-              "bez3x3-poly-dc-left2i24-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+              "bez3x3-poly-pow-left2i24-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     opts.ignore_trims = 1;
     sc_surface_key(&scene.surfaces[0], &opts, &key);
     CHECK_STR(scg_key_format(&key, text, sizeof text),
-              "bez3x3-poly-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
+              "bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov");
     /* Every trimmed key a scene asks for builds. */
     scg_program *prog;
     sc_error err;

@@ -57,14 +57,15 @@ int bench_sweep_parse_batches(const char *text, bench_sweep *sweep);
 int bench_sweep_run(sc_context_id ctx, const bench_sweep *sweep, sc_renderer_desc desc,
                     const char *camera_arg, int width, int height, int frames);
 
-/* The methods side by side (bench_methods.c): `--method A,B,…` parsed
- * into `methods` (0 or the exit status of a usage error), then one run
- * with every timed frame drawn by each method in turn. */
-#define BENCH_MAX_METHODS 8
-int bench_methods_parse(const char *text, sc_method *methods, int *count);
-int bench_methods_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
-                      const sc_camera_desc *cam, int frames, const sc_method *methods,
-                      int count);
+/* Renderers side by side (bench_sides.c): `--method A,B,…` or `--eval
+ * A,B,…` parsed into `values` (0 or the exit status of a usage error),
+ * then one run with every timed frame drawn by each in turn. */
+#define BENCH_MAX_SIDES 8
+typedef enum bench_side_field { BENCH_SIDE_METHOD, BENCH_SIDE_EVAL } bench_side_field;
+int bench_sides_parse(bench_side_field field, const char *text, int *values, int *count);
+int bench_sides_run(sc_context_id ctx, sc_scene_id scene, sc_renderer_desc desc,
+                    const sc_camera_desc *cam, int frames, bench_side_field field,
+                    const int *values, int count);
 
 /* The defaults against accuracy targets (bench_accuracy.c): `--accuracy
  * PX[,DEG]`, given up to BENCH_MAX_TARGETS times. */

@@ -55,6 +55,12 @@ static const char usage[] =
     "                         method in turn: one line `bench variant=method\n"
     "                         method=M ...` each, then the frame time of each\n"
     "                         over the first's\n"
+    "  --eval LIST            evaluation form of the unrolled Bezier programs'\n"
+    "                         iteration (default: pow up to degree 4, dc\n"
+    "                         above); a comma list of dc, bern, pow compares\n"
+    "                         them as --method does: one line `bench\n"
+    "                         variant=eval eval=E ...` each, then the frame\n"
+    "                         time of each over the first's\n"
     "  --accuracy PX[,DEG]    the defaults against the settings this accuracy\n"
     "                         target chooses (docs/accuracy.md); may be given up\n"
     "                         to 8 times. Each timed frame is drawn by every\n"
@@ -266,8 +272,8 @@ int cmd_bench(int argc, char **argv)
     int width = 1024, height = 1024, frames = 5, deg_lo = 0, deg_hi = 0, status = 0;
     sc_error err = {0};
     bench_sweep sweep = {0};
-    sc_method methods[BENCH_MAX_METHODS];
-    int nmethods = 0;
+    int methods[BENCH_MAX_SIDES], evals[BENCH_MAX_SIDES];
+    int nmethods = 0, nevals = 0;
     double target_px[BENCH_MAX_TARGETS], target_deg[BENCH_MAX_TARGETS];
     int ntargets = 0, peak = 0, colour_only = 0, update = 0;
     for (int i = 1; i < argc; i++) {
@@ -297,9 +303,14 @@ int cmd_bench(int argc, char **argv)
             if (cli_start_parse(argv[++i], &desc.start, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--method") && next) {
-            if ((status = bench_methods_parse(argv[++i], methods, &nmethods)) != 0)
+            if ((status = bench_sides_parse(BENCH_SIDE_METHOD, argv[++i], methods,
+                                            &nmethods)) != 0)
                 return status;
-            desc.method = methods[0];
+            desc.method = (sc_method)methods[0];
+        } else if (!strcmp(a, "--eval") && next) {
+            if ((status = bench_sides_parse(BENCH_SIDE_EVAL, argv[++i], evals, &nevals)) != 0)
+                return status;
+            desc.eval = (sc_eval)evals[0];
         } else if (!strcmp(a, "--accuracy") && next) {
             if (ntargets == BENCH_MAX_TARGETS)
                 return cli_usage_error("bench", "at most %d accuracy targets", BENCH_MAX_TARGETS);
@@ -344,7 +355,10 @@ int cmd_bench(int argc, char **argv)
         }
     }
     int sweeping = sweep.nerts || sweep.norders || sweep.nbatches;
-    if (sweep.nscenes > 1 && (peak || ntargets || nmethods > 1 || deg_lo))
+    if (nmethods > 1 && nevals > 1)
+        return cli_usage_error("bench", "--method and --eval compare one at a time: give "
+                                        "one of them a single name");
+    if (sweep.nscenes > 1 && (peak || ntargets || nmethods > 1 || nevals > 1 || deg_lo))
         return cli_usage_error("bench", "several scenes go with --ert, --order, --batch or "
                                         "none of the other modes");
     sc_context_id ctx;
@@ -393,7 +407,10 @@ int cmd_bench(int argc, char **argv)
         status = bench_accuracy_run(ctx, scene, desc, &cam, frames, target_px, target_deg,
                                     ntargets);
     } else if (nmethods > 1) {
-        status = bench_methods_run(ctx, scene, desc, &cam, frames, methods, nmethods);
+        status = bench_sides_run(ctx, scene, desc, &cam, frames, BENCH_SIDE_METHOD, methods,
+                                 nmethods);
+    } else if (nevals > 1) {
+        status = bench_sides_run(ctx, scene, desc, &cam, frames, BENCH_SIDE_EVAL, evals, nevals);
     } else {
         bench_result specialized, generic;
         if (bench_run(ctx, scene, &desc, &cam, frames, &specialized, &err) != SC_OK) {

@@ -26,6 +26,7 @@ static const char usage[] =
     "  --hull MODE        uniform:N or adaptive:TOL (adaptive:0.003)\n"
     "  --init START       mid, cpmap (cpmap)\n"
     "  --method M         newton, bclip, subdiv, hybrid (hybrid)\n"
+    "  --eval E           dc, bern, pow (pow up to degree 4, dc above)\n"
     "  --trim T[:N]       fast, clip, left; N clipping iterations (fast:16)\n"
     "  --ert MODE         none, conservative, manual, manual-both, peel (manual)\n"
     "  --view V           shade, uv, iters, normal, depth, hull (shade)\n"
@@ -66,6 +67,8 @@ int cmd_pack(int argc, char **argv)
             bad = cli_start_parse(argv[++i], &desc.start, &err) != SC_OK;
         } else if (!strcmp(a, "--method") && next) {
             bad = cli_method_parse(argv[++i], &desc.method, &err) != SC_OK;
+        } else if (!strcmp(a, "--eval") && next) {
+            bad = cli_eval_parse(argv[++i], &desc.eval, &err) != SC_OK;
         } else if (!strcmp(a, "--trim") && next) {
             bad = cli_trim_parse(argv[++i], &desc.trim, &desc.trim_iters, &err) != SC_OK;
         } else if (!strcmp(a, "--ert") && next) {

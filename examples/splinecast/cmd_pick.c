@@ -14,6 +14,7 @@
 static const char usage[] =
     "usage: splinecast pick SCENE --at X,Y [view options] [--backend egl|osmesa]\n"
     "                       [--method newton|broyden|bclip|subdiv|hybrid]\n"
+    "                       [--eval dc|bern|pow]\n"
     "\n"
     "Draws SCENE on the GPU as `render` does and prints what lies under image\n"
     "point (X, Y): X a column and Y a row from the top left, in pixels, pixel\n"
@@ -73,6 +74,9 @@ int cmd_pick(int argc, char **argv)
                 return cli_usage_error("pick", "%s", err.message);
         } else if (!strcmp(a, "--method") && next) {
             if (cli_method_parse(argv[++i], &desc.method, &err) != SC_OK)
+                return cli_usage_error("pick", "%s", err.message);
+        } else if (!strcmp(a, "--eval") && next) {
+            if (cli_eval_parse(argv[++i], &desc.eval, &err) != SC_OK)
                 return cli_usage_error("pick", "%s", err.message);
         } else if (a[0] != '-' && !scene_path) {
             scene_path = a;

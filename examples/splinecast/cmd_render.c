@@ -34,6 +34,9 @@ static const char usage[] =
     "                         (default hybrid; with subdiv, --iters is the\n"
     "                         stack depth, default 24; with bclip, the\n"
     "                         clipping steps, default 32)\n"
+    "  --eval dc|bern|pow     how the unrolled Bezier programs evaluate the\n"
+    "                         patch in the iteration (default: pow up to\n"
+    "                         degree 4, dc above)\n"
     "  --view shade|uv|iters|normal|depth|hull|reflect\n"
     "                         what the PNG shows (default shade); hull: each\n"
     "                         proxy hull in its own colour, dim where its ray\n"
@@ -164,6 +167,9 @@ int cmd_render(int argc, char **argv)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--method") && next) {
             if (cli_method_parse(argv[++i], &desc.method, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
+        } else if (!strcmp(a, "--eval") && next) {
+            if (cli_eval_parse(argv[++i], &desc.eval, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--trim") && next) {
             if (cli_trim_parse(argv[++i], &desc.trim, &desc.trim_iters, &err) !=

@@ -30,6 +30,8 @@ static const spelling orders[] = {
 static const spelling methods[] = {
     {"newton", SC_METHOD_NEWTON}, {"broyden", SC_METHOD_BROYDEN}, {"bclip", SC_METHOD_BCLIP},
     {"subdiv", SC_METHOD_SUBDIV}, {"hybrid", SC_METHOD_HYBRID}};
+static const spelling evals[] = {
+    {"dc", SC_EVAL_DC}, {"bern", SC_EVAL_BERN}, {"pow", SC_EVAL_POW}};
 static const spelling starts[] = {
     {"mid", SC_START_MID}, {"cpmap", SC_START_CPMAP}, {"view", SC_START_VIEW}};
 static const spelling backends[] = {
@@ -178,6 +180,20 @@ int cli_method_parse(const char *text, sc_method *out, sc_error *err)
 const char *cli_method_name(sc_method method)
 {
     return name_of(methods, COUNT(methods), method, "default");
+}
+
+int cli_eval_parse(const char *text, sc_eval *out, sc_error *err)
+{
+    int i = lookup(evals, COUNT(evals), text, strlen(text));
+    if (i < 0)
+        return fail(err, "unknown evaluation form '%s' (dc, bern or pow)", text);
+    *out = (sc_eval)evals[i].value;
+    return SC_OK;
+}
+
+const char *cli_eval_name(sc_eval eval)
+{
+    return name_of(evals, COUNT(evals), eval, "default");
 }
 
 int cli_start_parse(const char *text, sc_start *out, sc_error *err)

@@ -27,6 +27,9 @@ const char *cli_order_name(sc_hull_order order);
  * name. */
 int cli_method_parse(const char *text, sc_method *out, sc_error *err);
 const char *cli_method_name(sc_method method);
+/* dc, bern, pow; and back ("default" for SC_EVAL_DEFAULT). */
+int cli_eval_parse(const char *text, sc_eval *out, sc_error *err);
+const char *cli_eval_name(sc_eval eval);
 /* mid, cpmap, view; and back ("default" for SC_START_DEFAULT and values
  * without a spelling). */
 int cli_start_parse(const char *text, sc_start *out, sc_error *err);

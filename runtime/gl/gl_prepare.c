@@ -30,6 +30,7 @@ void sc_prepare_surface_key(const sc_surface *s, const sc_render_desc *desc,
         .termination = desc->ert,
         .outputs = view_outputs(desc),
         .method = desc->method,
+        .eval = desc->eval,
     };
     sc_surface_key(s, &opts, key);
     if (desc->generic && key->eval != SCG_EVAL_LOOP) {

@@ -54,6 +54,7 @@ typedef struct sc_render_desc {
     sc_method method;       /* intersection method (default hybrid); with
                                subdiv, max_iters is the stack depth
                                (SCG_DEFAULT_SUBDIV_DEPTH) */
+    sc_eval eval;           /* the unrolled Bézier keys' evaluation form */
     sc_accuracy_target accuracy; /* px > 0: each surface's hull tolerance,
                                iterations and tolerance chosen from this
                                target (accuracy.h) in place of hulls.tolerance,

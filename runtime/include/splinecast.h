@@ -266,13 +266,16 @@ typedef struct sc_keys_desc {
                                   all but those each surface decides (kind,
                                   degrees, rationality, loop where a degree
                                   needs it, trimmed or not and the trim
-                                  degree). So: nurbs or Bezier, bern, the
-                                  trim method and cap, method, start,
-                                  iterations, tolerance, ertN as it is and
-                                  outputs. bern with nurbs_direct fails,
-                                  naming the field and the key */
+                                  degree). So: nurbs or Bezier, dc, bern or
+                                  pow, the trim method and cap, method,
+                                  start, iterations, tolerance, ertN as it
+                                  is and outputs. bern or pow with
+                                  nurbs_direct fails, naming the field and
+                                  the key */
     sc_method method;          /* intersection method (hybrid; like's), as
                                   sc_renderer_desc.method */
+    sc_eval eval;              /* evaluation form of the unrolled Bézier
+                                  keys (like's), as sc_renderer_desc.eval */
 } sc_keys_desc;
 
 /* The distinct keys the scene needs, sorted. *count is always the number of
@@ -497,6 +500,9 @@ typedef struct sc_renderer_desc {
                                   max_iters is the depth of the subdivision
                                   stack (24), with bclip the number of
                                   clipping steps (32); both ignore start */
+    sc_eval eval;              /* how the unrolled Bézier programs evaluate
+                                  the patch in their iteration (pow up to
+                                  degree 4, dc above) */
     /* Instead of a scene: a file `splinecast pack` (sc_save_pack) wrote,
      * drawn as it is (docs/pack-format.md); the scene handle is then the
      * zero handle. The pack fixed keys, hulls and view when it was

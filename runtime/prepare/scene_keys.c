@@ -37,6 +37,17 @@ scg_ert sc_key_ert(sc_ray_termination termination)
     }
 }
 
+scg_eval_form sc_bezier_eval(sc_eval asked, int p, int q)
+{
+    int degree = p > q ? p : q;
+    switch (asked) {
+    case SC_EVAL_DC: return SCG_EVAL_DC;
+    case SC_EVAL_BERN: return SCG_EVAL_BASIS;
+    case SC_EVAL_POW: return degree <= SC_MAX_POW_DEGREE ? SCG_EVAL_POWER : SCG_EVAL_DC;
+    default: return degree <= SC_DEFAULT_POW_MAX_DEGREE ? SCG_EVAL_POWER : SCG_EVAL_DC;
+    }
+}
+
 void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key)
 {
     sc_key_options defaults;
@@ -51,8 +62,8 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->eval = SCG_EVAL_LOOP;
         key->deg_u = key->deg_v = 0;
     }
-    if (opts->eval_basis && kind == SCG_PATCH_BEZIER && key->eval == SCG_EVAL_DC)
-        key->eval = SCG_EVAL_BASIS;
+    if (kind == SCG_PATCH_BEZIER && key->eval == SCG_EVAL_DC)
+        key->eval = sc_bezier_eval(opts->eval, s->deg_u, s->deg_v);
     key->rational = s->rational != 0;
     int untrimmed = opts->ignore_trims || opts->trim_method == SC_TRIM_NONE;
     int tdeg = untrimmed ? 0 : sc_surface_trim_degree(s);

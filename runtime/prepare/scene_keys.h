@@ -61,10 +61,11 @@ typedef struct sc_key_options {
      * max_iters is the subdivision stack depth (0:
      * SCG_DEFAULT_SUBDIV_DEPTH). */
     sc_method method;
-    /* 1: Bézier keys that would be unrolled de Casteljau (dc) are
-     * Bernstein sums (bern) instead, as `gen --like` with a bern key asks;
-     * keys of other kinds and the generic program's are left as they are. */
-    int eval_basis;
+    /* The evaluation form of unrolled Bézier keys (SC_EVAL_DEFAULT: pow
+     * up to SC_DEFAULT_POW_MAX_DEGREE, dc above; pow above
+     * SC_MAX_POW_DEGREE gives dc); keys of other kinds and the generic
+     * program's are left as they are. */
+    sc_eval eval;
 } sc_key_options;
 
 /* SC_OK when the GPU programs can draw surface i of the scene. Otherwise
@@ -74,6 +75,11 @@ typedef struct sc_key_options {
  * reference go further), or a trim curve above SC_TRIM_MAX_DEGREE (trim.h;
  * loop validation keeps those out of scenes read from files). */
 int sc_surface_drawable(const sc_scene *scene, int i, sc_error *err);
+
+/* The evaluation form of an unrolled Bézier key of degrees p × q when
+ * `asked` is the option (SC_EVAL_DEFAULT: pow up to
+ * SC_DEFAULT_POW_MAX_DEGREE, dc above; pow above SC_MAX_POW_DEGREE: dc). */
+scg_eval_form sc_bezier_eval(sc_eval asked, int p, int q);
 
 /* The key surface s needs under opts (NULL: defaults); a valid key only
  * for a surface sc_surface_drawable accepts. */
