@@ -190,7 +190,9 @@ struct sc_renderer {
     float *nearest;          /* its largest distance per tile: sc_nearest_t */
     float *tile_far;         /* its largest value per tile */
     double raster_origin[3]; /* what hull vertices are rasterised relative to */
-    float *cosine;           /* per pixel: cosine of its ray to the view direction */
+    float *cosine;           /* per tile the smallest, then the largest
+                                cosine of its pixels' rays to the view
+                                direction */
     double cosine_fovy;      /* the field of view they are for (0: none yet) */
     /* sc_nearest_t for draws into an application's framebuffer (gl_embed.c):
      * far everywhere, app_nearest_w × app_nearest_h tiles. */
