@@ -138,7 +138,7 @@ typedef enum scg_input_slot {
 } scg_input_slot;
 
 /* Pixels per side of a tile of the early-termination texture sc_nearest_t. */
-enum { SCG_NEAREST_TILE = 8 };
+enum { SCG_NEAREST_TILE = 4 };
 
 /* ---- uniforms (default block; locations SCG_LOC_*) ---- */
 typedef enum scg_uniform_slot {

@@ -205,7 +205,7 @@ static void submit_runs(sc_renderer *r, int nruns, int first, int nidx, GLuint *
  * the attachment they write: GL leaves a fragment's read of a texel that
  * fragments of the same draw write undefined, and hulls of one batch
  * overlap on screen. A tile's largest distance never lies in front of the
- * nearest hit of any of its pixels, and the upload is a 64th of the
+ * nearest hit of any of its pixels, and the upload is a 16th of the
  * image's (on llvmpipe the frame time is the same as with every pixel's
  * distance). They also become depth along the view direction (which,
  * unlike the distance, a box's corners bound), kept as its largest value

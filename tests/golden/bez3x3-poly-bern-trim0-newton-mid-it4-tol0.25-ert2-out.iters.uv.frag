@@ -27,7 +27,7 @@ layout(location = 0) uniform float sc_footprint;
 // Patch data (gpu_layout.h), bound to the unit equal to the binding.
 layout(binding = 0) uniform samplerBuffer sc_points;
 layout(binding = 2) uniform samplerBuffer sc_records;
-// Per tile of 8 x 8 pixels, the largest distance along the unit ray to the
+// Per tile of 4 x 4 pixels, the largest distance along the unit ray to the
 // nearest surfaces drawn so far.
 layout(binding = 4) uniform sampler2D sc_nearest_t;
 
@@ -1086,7 +1086,7 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
 
 void main()
 {
-    sc_t_limit = texelFetch(sc_nearest_t, ivec2(gl_FragCoord.xy) / 8, 0).r / length(sc_ray_dir);
+    sc_t_limit = texelFetch(sc_nearest_t, ivec2(gl_FragCoord.xy) / 4, 0).r / length(sc_ray_dir);
     // The hull's front face (t = 1) lies behind the nearest surface so far.
     if (sc_t_limit < 1.0)
         discard;
