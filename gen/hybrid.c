@@ -222,7 +222,9 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_value allowed = scg_load(b, restarts_var);
     scg_value facing = scg_load(b, c->facing_var);
     scg_value steep = scg_lt(b, scg_const_f(b, HYBRID_CUT_FACING), facing);
-    scg_value cap = scg_select(b, steep, scg_const_i(b, 0), scg_const_i(b, HYBRID_TRIMMED_RESTARTS));
+    scg_value no_restart = scg_const_i(b, 0);
+    scg_value trimmed_restarts = scg_const_i(b, HYBRID_TRIMMED_RESTARTS);
+    scg_value cap = scg_select(b, steep, no_restart, trimmed_restarts);
     scg_value lower = scg_and(b, cut_away, scg_lt(b, cap, allowed));
     /* So does a crossing on a neighbouring sub-patch of the record met at
      * |cos| above HYBRID_CUT_FACING: that sub-patch's hull draws it, and
@@ -232,7 +234,9 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
     scg_value on_record = scg_isect_inside(b, uv, c->rec_lo, c->rec_hi);
     scg_value elsewhere = scg_and(b, converged, scg_and(b, scg_not(b, in_sub), on_record));
     scg_value one = scg_const_i(b, HYBRID_ELSEWHERE_RESTARTS);
-    scg_value lower_elsewhere = scg_and(b, scg_and(b, elsewhere, steep), scg_lt(b, one, allowed));
+    scg_value steep_elsewhere = scg_and(b, elsewhere, steep);
+    scg_value above_one = scg_lt(b, one, allowed);
+    scg_value lower_elsewhere = scg_and(b, steep_elsewhere, above_one);
     cap = scg_select(b, lower_elsewhere, one, cap);
     lower = scg_or(b, lower, lower_elsewhere);
     scg_store(b, restarts_var, scg_select(b, lower, cap, allowed));
@@ -251,9 +255,11 @@ void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
         scg_store(b, best_depth_var, scg_select(b, better, depth, best_depth));
         scg_value best_found = scg_load(b, best_found_var);
         scg_store(b, best_found_var, scg_or(b, best_found, better));
-        scg_value grazing = scg_lt(b, scg_load(b, c->facing_var), scg_const_f(b, HYBRID_SEEK_FACING));
+        scg_value facing_now = scg_load(b, c->facing_var);
+        scg_value grazing = scg_lt(b, facing_now, scg_const_f(b, HYBRID_SEEK_FACING));
         scg_value seeking = scg_load(b, seeking_var);
-        seek_begins = scg_and(b, scg_and(b, better, grazing), scg_not(b, seeking));
+        scg_value better_grazing = scg_and(b, better, grazing);
+        seek_begins = scg_and(b, better_grazing, scg_not(b, seeking));
         scg_store(b, seeking_var, scg_or(b, seeking, seek_begins));
         found = scg_and(b, better, scg_not(b, seek_begins));
         /* The seek runs through the quarters at most. */

@@ -148,7 +148,8 @@ static scg_value quad_holds_ray(scg_builder *b, scg_value a, scg_value bb, scg_v
         scg_value x0 = scg_comp(b, corners[k], 0), y0 = scg_comp(b, corners[k], 1);
         scg_value x1 = scg_comp(b, corners[k + 1], 0), y1 = scg_comp(b, corners[k + 1], 1);
         scg_value side = scg_products_difference(b, x0, y1, y0, x1);
-        scg_value edge = scg_vec2(b, scg_sub(b, x1, x0), scg_sub(b, y1, y0));
+        scg_value edge_x = scg_sub(b, x1, x0);
+        scg_value edge = scg_vec2(b, edge_x, scg_sub(b, y1, y0));
         scg_value give = scg_mul(b, slack, scg_length(b, edge));
         scg_value not_neg = scg_le(b, scg_neg(b, give), side);
         scg_value not_pos = scg_le(b, side, give);
@@ -189,7 +190,9 @@ static void visit(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value met
      * alone drew rays that pass the surface by a fraction of the tolerance
      * as hits (the teaspoon at 256x256: 0.22 % of its pixels). A piece the
      * full stack stops keeps the box's answer. */
-    scg_value crosses = scg_or(b, scg_const_b(b, false), quad_holds_ray(b, c00, c10, c11, c01, scg_mul(b, c->tol, scg_const_f(b, QUAD_SLACK))));
+    scg_value never = scg_const_b(b, false);
+    scg_value slack = scg_mul(b, c->tol, scg_const_f(b, QUAD_SLACK));
+    scg_value crosses = scg_or(b, never, quad_holds_ray(b, c00, c10, c11, c01, slack));
     scg_if(b, crosses);
     scg_piece_hit(c, s, iv, near);
     scg_endif(b);

@@ -654,9 +654,9 @@ void sc_intersect(out bool hit, out vec2 uv, out float t, out vec3 point, out ve
         bool kept_802 = !kept_786;
         bool kept_803 = kept_802 && kept_801;
         bool kept_804 = converged_298 && kept_803;
-        bool kept_805 = 1 < v367;
-        bool kept_806 = kept_804 && kept_791;
-        bool kept_807 = kept_806 && kept_805;
+        bool kept_805 = kept_804 && kept_791;
+        bool kept_806 = 1 < v367;
+        bool kept_807 = kept_805 && kept_806;
         int kept_808 = kept_807 ? 1 : kept_792;
         int kept_809 = kept_807 ? kept_808 : v367;
         v367 = kept_809;
