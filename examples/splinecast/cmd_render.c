@@ -36,7 +36,7 @@ static const char usage[] =
     "                         clipping steps, default 32)\n"
     "  --eval dc|bern|pow     how the unrolled Bezier programs evaluate the\n"
     "                         patch in the iteration (default: pow up to\n"
-    "                         degree 4, dc above)\n"
+    "                         degree 4, dc above; pow stops at degree 6)\n"
     "  --view shade|uv|iters|normal|depth|hull|reflect\n"
     "                         what the PNG shows (default shade); hull: each\n"
     "                         proxy hull in its own colour, dim where its ray\n"
