@@ -213,11 +213,7 @@ void scg_isect_eval_in_frame(scg_isect *c, scg_value uv, scg_value f[3])
     if (c->key->kind == SCG_PATCH_NURBS) {
         eval_unrolled(c, NULL, true, u, v, h);
     } else if (c->key->eval == SCG_EVAL_POWER) {
-        scg_dir du, dv;
-        du.degree = c->p;
-        du.t = u;
-        dv.degree = c->q;
-        dv.t = v;
+        scg_dir du = {.degree = c->p, .t = u}, dv = {.degree = c->q, .t = v};
         scg_eval_tensor_power(b, c->power, &du, &dv, h);
     } else {
         eval_unrolled(c, c->proj, false, u, v, h);
