@@ -19,7 +19,7 @@
  *
  * Shaped for a GPU that runs both sides of every branch under a mask and a
  * loop for as long as any ray of a group needs it (llvmpipe): everything
- * is one runtime loop whose passes take HYBRID_PASS_STEPS unrolled Newton
+ * is one runtime loop whose passes take one or two unrolled Newton
  * steps each, the first passes being Newton's own run. A group whose rays
  * all converge within one pass stops after it (cheaper than Newton's
  * itN unrolled steps, which all run under the mask); a restart costs a
@@ -31,13 +31,23 @@
 #include "hybrid.h"
 #include "newton.h"
 
-/* Newton steps a pass (a run of itN steps takes ⌈itN/3⌉ passes), and
- * restarts after Newton's own run: the sub-patch's middle and its four
+/* Newton steps a pass (a run of itN steps takes ⌈itN/steps⌉ passes): one
+ * for untrimmed keys, two for trimmed ones, whose pass ends with the trim
+ * test. The passes change no pixel (a step after convergence is masked),
+ * only what a group pays: its slowest ray's steps rounded up to whole
+ * passes, every step of a pass under the mask, against one pass end per
+ * pass. Measured with the same frames drawn by each set of programs
+ * (docs/speed.md, "Passes of the hybrid"), against 3 steps: the teapot at
+ * 1024² 0.87 with 1 step (pow), 0.84 (dc), 0.91 with 2; PRO20359-L1 (dc,
+ * trimmed) 0.93 with 1 or 2; gpucast_part (trimmed) 1.04 with 1, 0.96
+ * with 2.
+ *
+ * Restarts after Newton's own run: the sub-patch's middle and its four
  * quarters'; on to the sixteenths (21) where the sub-patch spans more than
  * HYBRID_LARGE_PIXELS; the quarters at most after a crossing the trim
  * curves cut away. Measured (docs/compiler.md, "Methods"): on the teapot at 1024²,
- * passes of 2, 3 and 6 steps cost 1.08-1.12, 1.09-1.20 and 1.42x Newton's
- * frame with 5 restarts; 21 restarts everywhere cost 1.4-1.7x, paid by
+ * with passes of 3 steps then, 5 restarts cost 1.09-1.20x Newton's
+ * frame; 21 restarts everywhere cost 1.4-1.7x, paid by
  * the rays near silhouettes that miss and so run them all, and a
  * threshold of 16, 32, 64, 128 or 256 pixels 1.57-1.69, 1.52-1.59,
  * 1.21-1.23, 1.15-1.16 and 1.04-1.15x; 512 left a hole in PRO20359-L1's
@@ -51,7 +61,8 @@
  * failing the same pixels; with no restart at all after a cut-away point
  * PRO20359-L1's tail close-up failed 0.74 % at 512² (docs/stability.md,
  * "The hybrid on trimmed models"). */
-#define HYBRID_PASS_STEPS 3
+#define HYBRID_PASS_STEPS 1
+#define HYBRID_TRIMMED_PASS_STEPS 2
 #define HYBRID_RESTARTS 5
 #define HYBRID_RESTARTS_LARGE 21
 #define HYBRID_LARGE_PIXELS 256.0f
@@ -154,7 +165,8 @@ static void start_run(scg_isect *c, scg_value r, scg_value lo_var, scg_value hi_
 
 int scg_hybrid_pass_steps(const scg_key *key)
 {
-    return HYBRID_PASS_STEPS < key->max_iters ? HYBRID_PASS_STEPS : key->max_iters;
+    int steps = key->trim == SC_TRIM_NONE ? HYBRID_PASS_STEPS : HYBRID_TRIMMED_PASS_STEPS;
+    return steps < key->max_iters ? steps : key->max_iters;
 }
 
 void scg_method_hybrid(scg_isect *c, scg_value uv0, scg_value behind)
