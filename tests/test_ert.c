@@ -3,7 +3,8 @@
  * image of no early termination (fail_pct 0 against it, same surface at
  * every pixel), on the stacked patches and on the scene of six keys; the
  * scenes' known answers (the nearest layer everywhere, the CPU reference);
- * the batch rule (read-back count); hulls holding the eye; the options on the
+ * tile values read back that hide nothing (a strip just in front of a
+ * tilted patch); the batch rule (read-back count); hulls holding the eye; the options on the
  * command line. */
 #include "gl_context_util.h"
 #include "test.h"
@@ -11,7 +12,7 @@
 #include <stdlib.h>
 
 #include "gl_context.h"
-#include "gl_render.h"
+#include "gl_render_private.h"
 #include "imgdiff.h"
 #include "io.h"
 #include "emit_glsl.h"
@@ -240,6 +241,99 @@ TEST(ert_nearest_from_earlier_batches)
         }
     }
     free(nearest);
+    sc_scene_free(&scene);
+}
+
+/* A flat bilinear patch with corners at z = z0 + slope · y, x within
+ * half_x and y within half_y of (0, cy). */
+static void add_tilted_rectangle(sc_scene *scene, double cy, double half_x, double half_y,
+                                 double z0, double slope)
+{
+    sc_surface *s = sc_scene_add_surface(scene);
+    sc_surface_alloc(s, 1, 1, 2, 2);
+    static const double knots[4] = {0, 0, 1, 1};
+    memcpy(s->knots_u, knots, sizeof knots);
+    memcpy(s->knots_v, knots, sizeof knots);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            double *c = &s->cp[4 * (j * 2 + i)];
+            c[0] = i ? half_x : -half_x;
+            c[1] = cy + (j ? half_y : -half_y);
+            c[2] = z0 + slope * c[1];
+            c[3] = 1;
+        }
+    sc_surface_update_rational(s);
+}
+
+/* Culling never hides a surface, and neither does the programs' discard:
+ * a large patch tilted away from the eye (its box's nearest corner close,
+ * so it is drawn first) and a strip 0.02–0.08 in front of it, drawn after
+ * it (its box farther). Once the large patch is read back, every tile the
+ * strip's box touches holds the large patch's depth, up to 1.6 % beyond
+ * the strip: tile values that erred small by that much would cull the
+ * strip's hull or discard its rays. One hull per batch, front to back, in
+ * frames with the AOVs (distances from the uvt attachment) and colour-only
+ * ones (window depths from the depth buffer, converted once a tile),
+ * against the image of no early termination. */
+TEST(ert_tile_values_never_hide_a_surface)
+{
+    TEST_NEED_GL_CONTEXT(ctx);
+    const sc_gl *gl = sc_gl_context_gl(ctx);
+    sc_scene scene;
+    sc_scene_init(&scene);
+    add_tilted_rectangle(&scene, 0, 2, 2, 0, 0.3);         /* z from -0.6 to 0.6 */
+    add_tilted_rectangle(&scene, -1.5, 0.5, 0.1, -0.4, 0); /* the first at -0.48..-0.42 */
+    sc_error err = {0};
+    const sc_camera cam = {.eye = {0, 0, 10}, .target = {0, 0, 0}, .fovy_deg = 30,
+                           .width = 96, .height = 96};
+    for (int colour_only = 0; colour_only < 2; colour_only++) {
+        sc_image image[2] = {{0}};
+        sc_aov aov[2] = {{0}};
+        for (int manual = 0; manual < 2; manual++) {
+            sc_render_desc desc = {.ert = manual ? SC_TERMINATION_MANUAL : SC_TERMINATION_NONE,
+                                   .batch_hulls = 1, .order = SC_HULL_ORDER_FRONT_TO_BACK,
+                                   .aovs_on_demand = colour_only};
+            sc_renderer *r;
+            CHECK_INT(sc_renderer_create(gl, &scene, &desc, &r, &err), SC_OK);
+            CHECK_INT(sc_renderer_draw(r, &cam, &err), SC_OK);
+            sc_render_stats stats;
+            sc_renderer_stats(r, &stats);
+            CHECK(manual ? stats.readbacks > 0 : stats.readbacks == 0);
+            /* The frame itself: its colour attachment, or its AOVs (a read
+             * would draw a colour-only frame again, with them). */
+            if (colour_only)
+                CHECK_INT(sc_gl_target_read_image(gl, &r->target, SCG_FRAG_OUT_COLOUR,
+                                                  &image[manual], &err), SC_OK);
+            else
+                CHECK_INT(sc_renderer_read(r, NULL, &aov[manual], &err), SC_OK);
+            sc_renderer_destroy(r);
+        }
+        if (colour_only) {
+            long differ = 0;
+            for (int p = 0; image[0].pixels && image[1].pixels && p < cam.width * cam.height; p++)
+                for (int c = 0; c < 3; c++)
+                    if (image[0].pixels[p * image[0].channels + c] !=
+                        image[1].pixels[p * image[1].channels + c]) {
+                        differ++;
+                        break;
+                    }
+            if (differ)
+                fprintf(stderr, "  colour-only: %ld pixels differ\n", differ);
+            CHECK(image[0].pixels && image[1].pixels);
+            CHECK_INT(differ, 0);
+        } else {
+            /* The strip shows (surface 1), and the same pixels in both. */
+            long strip = 0;
+            for (int p = 0; aov[0].surface && p < cam.width * cam.height; p++)
+                strip += aov[0].surface[p] == 1;
+            CHECK(strip > 30);
+            CHECK(same_image(&aov[0], &aov[1], "aov frames"));
+        }
+        for (int m = 0; m < 2; m++) {
+            sc_image_free(&image[m]);
+            sc_aov_free(&aov[m]);
+        }
+    }
     sc_scene_free(&scene);
 }
 

@@ -105,6 +105,10 @@ TEST(pack_renderer_draws_the_scene_s_image)
                                &(sc_renderer_desc){.pack = pack, .max_iters = 3}, &bad, &err),
               SC_FAIL);
     CHECK_CONTAINS(err.message, "max_iters is fixed by the pack");
+    CHECK_INT(sc_make_renderer(ctx, (sc_scene_id){0},
+                               &(sc_renderer_desc){.pack = pack, .eval = SC_EVAL_DC}, &bad, &err),
+              SC_FAIL);
+    CHECK_CONTAINS(err.message, "eval is fixed by the pack");
     CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.pack = pack}, &bad, &err),
               SC_FAIL);
     CHECK_CONTAINS(err.message, "zero handle");
