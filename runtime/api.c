@@ -360,9 +360,7 @@ static int like_options(const char *like, sc_key_options *opts, sc_error *err)
     /* An unrolled Bézier key names its form; nurbs, loop and tri keys
      * name none that the Bézier keys of the scene could take. */
     if (!opts->eval && key.kind == SCG_PATCH_BEZIER && key.eval != SCG_EVAL_LOOP)
-        opts->eval = key.eval == SCG_EVAL_BASIS   ? SC_EVAL_BERN
-                     : key.eval == SCG_EVAL_POWER ? SC_EVAL_POW
-                                                  : SC_EVAL_DC;
+        opts->eval = sc_eval_option(key.eval);
     if (key.trim != SC_TRIM_NONE && !opts->trim_method) {
         opts->trim_method = key.trim;
         if (!opts->trim_iters)

@@ -48,6 +48,11 @@ scg_eval_form sc_bezier_eval(sc_eval asked, int p, int q)
     }
 }
 
+sc_eval sc_eval_option(scg_eval_form form)
+{
+    return form == SCG_EVAL_BASIS ? SC_EVAL_BERN : form == SCG_EVAL_POWER ? SC_EVAL_POW : SC_EVAL_DC;
+}
+
 void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *key)
 {
     sc_key_options defaults;

@@ -80,6 +80,8 @@ int sc_surface_drawable(const sc_scene *scene, int i, sc_error *err);
  * `asked` is the option (SC_EVAL_DEFAULT: pow up to
  * SC_DEFAULT_POW_MAX_DEGREE, dc above; pow above SC_MAX_POW_DEGREE: dc). */
 scg_eval_form sc_bezier_eval(sc_eval asked, int p, int q);
+/* The option that asks for an unrolled form (dc, bern, pow) by name. */
+sc_eval sc_eval_option(scg_eval_form form);
 
 /* The key surface s needs under opts (NULL: defaults); a valid key only
  * for a surface sc_surface_drawable accepts. */
