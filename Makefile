@@ -98,7 +98,17 @@ CFLAGS   += -DSC_HAVE_OCCT
 LIB_OBJ  += $(BUILD)/runtime/io/step_occt.o
 LIBS     += $(OCCT_LIBS)
 endif
-$(BUILD)/%.o: %.cpp
+
+# What the objects are compiled and linked with, in a file rewritten only
+# when that changes: a build after `make deps` installed Open CASCADE (or
+# with other flags) recompiles everything, instead of linking objects made
+# without it.
+CONFIG_STAMP := $(BUILD)/config.stamp
+CONFIG_TEXT  := $(CC) $(CFLAGS) | $(CXX) $(CXXFLAGS) | $(LIBS)
+$(shell mkdir -p $(BUILD) && { printf '%s\n' '$(CONFIG_TEXT)' | cmp -s - $(CONFIG_STAMP) || \
+        printf '%s\n' '$(CONFIG_TEXT)' > $(CONFIG_STAMP); })
+
+$(BUILD)/%.o: %.cpp $(CONFIG_STAMP)
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS) -c $< -o $@
 
@@ -119,7 +129,7 @@ deps:
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
 	else echo "deps: all Debian packages present"; fi
 
-$(BUILD)/%.o: %.c
+$(BUILD)/%.o: %.c $(CONFIG_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
