@@ -4,7 +4,7 @@
  * every pixel), on the stacked patches and on the scene of six keys; the
  * scenes' known answers (the nearest layer everywhere, the CPU reference);
  * tile values read back that hide nothing (a strip just in front of a
- * tilted patch); the batch rule (read-back count); hulls holding the eye; the options on the
+ * tilted patch), and their reduction against a plain maximum; the batch rule (read-back count); hulls holding the eye; the options on the
  * command line. */
 #include "gl_context_util.h"
 #include "test.h"
@@ -242,6 +242,43 @@ TEST(ert_nearest_from_earlier_batches)
     }
     free(nearest);
     sc_scene_free(&scene);
+}
+
+/* The read-backs' reduction against a plain maximum over each tile, on
+ * sizes that end in part tiles and in part runs of the vectorised column
+ * pass (widths 1 to 21 past a multiple of 8); values in [0, 256), as
+ * distances and depths are. */
+TEST(ert_tile_maxima_is_each_tile_s_largest_value)
+{
+    const int T = SCG_NEAREST_TILE;
+    unsigned seed = 12345;
+    int sizes[][2] = {{1, 1}, {3, 2}, {8, 4}, {13, 7}, {29, 9}, {64, 17}, {1027, 13}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        int w = sizes[i][0], h = sizes[i][1], tw = (w + T - 1) / T, th = (h + T - 1) / T;
+        float *pixels = malloc((size_t)w * (size_t)h * sizeof *pixels);
+        float *expect = malloc((size_t)tw * (size_t)th * sizeof *expect);
+        float *got = malloc((size_t)tw * (size_t)th * sizeof *got);
+        for (int t = 0; t < tw * th; t++)
+            expect[t] = -1;
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                seed = seed * 1103515245u + 12345u;
+                float v = (float)((seed >> 8) & 0xffff) / 256.0f;
+                pixels[y * w + x] = v;
+                float *e = &expect[(y / T) * tw + x / T];
+                *e = v > *e ? v : *e;
+            }
+        sc_tile_maxima(pixels, w, h, tw, got);
+        int wrong = 0;
+        for (int t = 0; t < tw * th; t++)
+            wrong += got[t] != expect[t];
+        if (wrong)
+            fprintf(stderr, "  %d x %d: %d tiles wrong\n", w, h, wrong);
+        CHECK_INT(wrong, 0);
+        free(pixels);
+        free(expect);
+        free(got);
+    }
 }
 
 /* A flat bilinear patch with corners at z = z0 + slope · y, x within

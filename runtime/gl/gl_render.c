@@ -265,10 +265,9 @@ static void max_rows(float *restrict first, const float *restrict row, size_t n)
         first[x] = row[x] > first[x] ? row[x] : first[x];
 }
 
-/* The largest value of each tile of `pixels` (w × h) into `out` (tw × th).
- * Each tile row's maxima go down the columns into the row's first line
- * (overwriting `pixels`), then across each tile. */
-static void tile_maxima(float *pixels, int w, int h, int tw, float *out)
+/* Each tile row's maxima go down the columns into the row's first line,
+ * then across each tile. */
+void sc_tile_maxima(float *pixels, int w, int h, int tw, float *out)
 {
     for (int y0 = 0; y0 < h; y0 += NEAREST_TILE) {
         float *first = pixels + (size_t)y0 * (size_t)w;
@@ -308,7 +307,7 @@ static void refresh_nearest(sc_renderer *r)
          * made larger by more than the buffer's rounding there (relative
          * 2^-24 · f/n), so that nothing in front of a hit is ever culled;
          * a tile with background stays far. */
-        tile_maxima(r->uvt, w, h, tw, r->tile_far);
+        sc_tile_maxima(r->uvt, w, h, tw, r->tile_far);
         double n = r->znear, f = r->zfar;
         for (size_t t = 0; t < tiles; t++) {
             double d = r->tile_far[t];
@@ -327,7 +326,7 @@ static void refresh_nearest(sc_renderer *r)
         /* The distances (.z) packed in place, ahead of where they are read. */
         for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
             r->uvt[i] = r->uvt[4 * i + 2];
-        tile_maxima(r->uvt, w, h, tw, r->nearest);
+        sc_tile_maxima(r->uvt, w, h, tw, r->nearest);
         for (size_t t = 0; t < tiles; t++)
             r->tile_far[t] = r->nearest[t] * cos_hi[t];
     }

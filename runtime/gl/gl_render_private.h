@@ -281,6 +281,11 @@ static inline sc_program sc_render_group_program(const sc_renderer *r, int g, in
  * or r->frame_aovs's attachments changed), bound and cleared, GL_FRAMEBUFFER_SRGB enabled. */
 int sc_render_begin_target(sc_renderer *r, int width, int height, sc_error *err);
 
+/* The largest value of each tile of SCG_NEAREST_TILE² pixels of `pixels`
+ * (w × h, rows overwritten) into `out` (tw tiles a row): the manual early
+ * termination's read-backs (gl_render.c). */
+void sc_tile_maxima(float *pixels, int w, int h, int tw, float *out);
+
 /* Depth peeling (gl_peel.c): draws r->items[0, n) (no hull holding the
  * eye) into the renderer's own target, bound, with the frame's uniforms
  * set; vp and raster_eye for the pre-pass. */
