@@ -583,3 +583,45 @@ TEST(install_api_update_surface)
     CHECK_INT(info.rational, 1);
     sc_shutdown();
 }
+
+/* Whether an object of build folder `build` is up to date for make
+ * (`make -q`), given HAVE_OCCT. */
+static int object_up_to_date(const char *build, int have_occt)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd,
+             "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -q -C '%s' BUILD='%s' HAVE_OCCT=%d "
+             "'%s/gen/key.o'",
+             test_root_dir, build, have_occt, build);
+    return test_run(cmd, NULL, NULL) == 0;
+}
+
+/* Objects depend on the flags they were compiled with (Makefile,
+ * config.stamp): a build after Open CASCADE was installed (HAVE_OCCT
+ * turning 1) recompiles them, and the same flags again leave them be. In a
+ * folder of its own, with an object newer than its source and a stamp from
+ * 2000, so that only the stamp can make it stale. */
+TEST(install_objects_follow_the_build_flags)
+{
+    char build[600], path[700], cmd[4096];
+    snprintf(build, sizeof build, "%s/stamp-build", test_tmpdir());
+    snprintf(cmd, sizeof cmd,
+             "mkdir -p '%s/gen' && touch '%s/gen/key.o' '%s/gl_functions.h' && "
+             "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s -C '%s' BUILD='%s' HAVE_OCCT=0 "
+             "'%s/config.stamp' && touch -d 2000-01-01 '%s/config.stamp'",
+             build, build, build, test_root_dir, build, build, build);
+    CHECK_INT(test_run(cmd, NULL, NULL), 0);
+    snprintf(path, sizeof path, "%s/config.stamp", build);
+    char *stamp = test_read_file(path);
+    CHECK(stamp && !strstr(stamp, "SC_HAVE_OCCT"));
+    free(stamp);
+    CHECK(object_up_to_date(build, 0));
+    CHECK(!object_up_to_date(build, 1));
+    stamp = test_read_file(path);
+    CHECK(stamp && strstr(stamp, "-DSC_HAVE_OCCT"));
+    free(stamp);
+    /* The same flags again: the stamp is not rewritten. */
+    snprintf(cmd, sizeof cmd, "touch -d 2000-01-01 '%s'", path);
+    CHECK_INT(test_run(cmd, NULL, NULL), 0);
+    CHECK(object_up_to_date(build, 1));
+}
