@@ -127,7 +127,8 @@ typedef enum scg_input_slot {
     /* float: early ray termination — the ray parameter t (same units as
      * SCG_IN_RAY_DIR) beyond which this pixel holds a surface already
      * drawn, or a huge value (3.0e38) when there is none. Read only by
-     * ert1/ert2 keys. Not a vertex-stage output: the fragment program's
+     * ert1/ert2/ert5 keys. Not a vertex-stage output: an ert5 program's loop
+     * sets it to the nearest hit of the candidates run so far; the others'
      * main() derives it from the sc_nearest_t texture before the
      * intersection. That texture has one texel per SCG_NEAREST_TILE² pixels
      * (tile (x / T, y / T) of gl_FragCoord): the largest distance along the

@@ -548,6 +548,38 @@ scg_value scg_isect_kept(scg_isect *c, scg_value want, scg_value uv)
     return scg_load(c->b, kept_var_at(c, want, uv, r_lo, r_extent));
 }
 
+/* Candidate lists (ert5) have no hull to interpolate a start over: of a
+ * 3 × 3 grid of parameters over the sub-patch, the one whose point passes
+ * nearest the ray (in the ray's frame, the offsets from its two planes). */
+static scg_value sampled_start(scg_isect *c)
+{
+    scg_builder *b = c->b;
+    static const float at[3] = {1.0f / 6, 0.5f, 5.0f / 6};
+    scg_value extent = scg_sub(b, c->dom_hi, c->dom_lo);
+    scg_value best = 0, best_miss = 0;
+    scg_name(b, "sample");
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            scg_value uv = scg_add(b, c->dom_lo,
+                                   scg_mul(b, extent, scg_const_vec(b, 2, (float[]){at[i], at[j]})));
+            scg_value f[3];
+            scg_isect_eval_in_frame(c, uv, f);
+            scg_name(b, "sample");
+            scg_value offsets = scg_vec2(b, scg_comp(b, f[0], 0), scg_comp(b, f[0], 1));
+            scg_value miss = scg_dot(b, offsets, offsets);
+            if (!best) {
+                best = uv;
+                best_miss = miss;
+                continue;
+            }
+            scg_value nearer = scg_lt(b, miss, best_miss);
+            best = scg_select(b, nearer, uv, best);
+            best_miss = scg_select(b, nearer, miss, best_miss);
+        }
+    scg_name(b, NULL);
+    return best;
+}
+
 void scg_build_intersection(scg_builder *b, const scg_key *key, scg_method_fn method)
 {
     scg_isect ctx = {.b = b, .key = key, .p = key->deg_u, .q = key->deg_v};
@@ -569,6 +601,8 @@ void scg_build_intersection(scg_builder *b, const scg_key *key, scg_method_fn me
     }
     if (key->kind == SCG_PATCH_BEZIER)
         bezier_points(c, r0);
+    if (key->ert == SCG_ERT_LISTS)
+        uv0 = sampled_start(c);
     method(c, uv0, behind);
 
     /* The verdict, from a full evaluation at the final (u, v). */
@@ -617,7 +651,11 @@ void scg_build_intersection(scg_builder *b, const scg_key *key, scg_method_fn me
         scg_name(b, "hit");
         hit = scg_and(b, hit, in_front);
     }
-    if (key->ert == SCG_ERT_BOTH)
+    /* Candidate lists pass the nearest hit so far as the limit: a hit is
+     * kept only in front of it. */
+    if (key->ert == SCG_ERT_LISTS)
+        t_limit = scg_input(b, SCG_IN_T_LIMIT);
+    if (key->ert == SCG_ERT_BOTH || key->ert == SCG_ERT_LISTS)
         hit = scg_and(b, hit, scg_lt(b, t, t_limit));
     scg_name(b, "normal");
     scg_value normal = scg_cross(b, e[1], e[2]);

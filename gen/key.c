@@ -284,8 +284,8 @@ int scg_key_parse(const char *text, scg_key *key, sc_error *err)
                            "tolT with T in pixel footprints, 0.001 to 1000, at most 3 decimals");
     rest = fields[8];
     int ert = -1;
-    if (strncmp(rest, "ert", 3) != 0 || (rest += 3, !read_int(&rest, &ert)) || *rest || ert > 4)
-        return field_error(err, text, 8, fields[8], "ert0, ert1, ert2, ert3 or ert4");
+    if (strncmp(rest, "ert", 3) != 0 || (rest += 3, !read_int(&rest, &ert)) || *rest || ert > 5)
+        return field_error(err, text, 8, fields[8], "ert0, ert1, ert2, ert3, ert4 or ert5");
     k.ert = (scg_ert)ert;
     if (strncmp(fields[9], "out.", 4) != 0)
         return field_error(err, text, 9, fields[9], "out. followed by shade, aov, iters, uv, hull");
@@ -366,6 +366,15 @@ int scg_key_check(const scg_key *key, sc_error *err)
                            "key %s: ert4 (depth peeling) writes no depth, and the hull view "
                            "(out.hull) writes the hull face's depth where rays miss",
                            text);
+    if (key->ert == SCG_ERT_LISTS && tri)
+        return sc_fail_key(err, text, "key %s: ert5 (candidate lists) is for tensor patches; a "
+                           "terrain's prisms are drawn in Manhattan sets", text);
+    if (key->ert == SCG_ERT_LISTS && key->start != SC_START_MID)
+        return sc_fail_key(err, text, "key %s: ert5 (candidate lists) draws no hull to "
+                           "interpolate a start over: write 'mid' for the start field", text);
+    if (key->ert == SCG_ERT_LISTS && (key->outputs & SCG_OUTPUT_HULLVIEW))
+        return sc_fail_key(err, text, "key %s: ert5 (candidate lists) draws no hulls for the "
+                           "hull view (out.hull) to show", text);
     if (missing)
         return sc_fail_key(err, text, "%s not implemented yet", missing);
     return SC_OK;

@@ -93,7 +93,7 @@ typedef enum scg_ert {
     SCG_ERT_CONSERVATIVE,     /* "ert3": gl_FragDepth declared depth_greater
                                  (the hit never lies in front of the hull),
                                  so a GPU may keep its early depth test */
-    SCG_ERT_PEEL              /* "ert4": depth peeling of the hulls' entries
+    SCG_ERT_PEEL,             /* "ert4": depth peeling of the hulls' entries
                                  (runtime/gl/gl_peel.c): no gl_FragDepth, the
                                  early fragment tests declared (the depth
                                  test against the layer's entry depth runs
@@ -102,6 +102,14 @@ typedef enum scg_ert {
                                  pixel (the image sc_best_depth), which it
                                  then becomes. Not with the hull view, which
                                  writes the hull's depth where rays miss */
+    SCG_ERT_LISTS             /* "ert5": candidate lists per pixel
+                                 (runtime/gl/gl_lists.c): drawn over a
+                                 rectangle of pixels, the program runs each
+                                 pixel's list of hulls, nearest box first,
+                                 until the next box lies behind its nearest
+                                 hit; a hit is kept only when nearer. Start
+                                 `mid` only (no hull to interpolate a start
+                                 over); not with the hull view */
 } scg_ert;
 
 /* Output bits; the text lists the set ones in this order, joined by '.'. */

@@ -57,7 +57,16 @@
     /* the eye relative to the scene's origin */                                     \
     X(EYE, 17, "sc_eye", "vec3")                                                     \
     X(EYE_LOW, 18, "sc_eye_low", "vec3")                                             \
-    X(RASTER_EYE, 19, "sc_raster_eye", "vec3")
+    X(RASTER_EYE, 19, "sc_raster_eye", "vec3")                                      \
+    /* ert5 fragment stage: window position (x, y, 1) to a world direction */        \
+    /* of the pixel's ray (locations 20-22) */                                       \
+    X(PIXEL_TO_RAY, 20, "sc_pixel_to_ray", "mat3")                                   \
+    /* ert5 fragment stage: the drawn rectangle's first pixel (x, y), its */         \
+    /* width, and its first entry in sc_list_heads */                                \
+    X(LIST_CELLS, 23, "sc_list_cells", "ivec4")                                      \
+    /* ert5 vertex stage: the rectangle in normalised device coordinates */          \
+    /* (x0, y0, x1, y1) */                                                           \
+    X(LIST_QUAD, 24, "sc_list_quad", "vec4")
 
 /* Textures, bound to the texture unit equal to their binding: X(ID, unit,
  * GLSL name, sampler type, components of a texel read). POINTS, KNOTS and
@@ -71,7 +80,16 @@
     X(COLOURS, 3, "sc_colours", "samplerBuffer", 4)                                  \
     /* per tile of SCG_NEAREST_TILE² pixels, the largest distance along the */       \
     /* unit ray to the nearest surfaces drawn so far (ert1/ert2 keys) */             \
-    X(NEAREST_T, 4, "sc_nearest_t", "sampler2D", 1)
+    X(NEAREST_T, 4, "sc_nearest_t", "sampler2D", 1)                                 \
+    /* ert5 keys (runtime/gl/gl_lists.c): per pixel of the drawn rectangle */        \
+    /* (row by row, from LIST_CELLS.w) its first entry in sc_list_items, the */      \
+    /* next pixel's first ending it */                                               \
+    X(LIST_HEADS, 8, "sc_list_heads", "usamplerBuffer", 1)                           \
+    /* the candidates: slots of sc_list_hulls, nearest box first per pixel */        \
+    X(LIST_ITEMS, 9, "sc_list_items", "usamplerBuffer", 1)                           \
+    /* per slot two texels: the sub-patch domain (u0, u1, v0, v1); the */            \
+    /* record index and the distance from the eye to the hull's box */               \
+    X(LIST_HULLS, 10, "sc_list_hulls", "samplerBuffer", 4)
 
 /* Shader storage: the fragment programs that write the AOVs count, in one
  * std430 block at binding SCG_BUFFER_COUNTERS, the intersections they run

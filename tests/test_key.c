@@ -115,7 +115,7 @@ TEST(key_malformed_refused)
         /* Just above the range, in the whole part and in the fraction. */
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1001-ert0-out.shade", "0.001 to 1000"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol1000.001-ert0-out.shade", "0.001 to 1000"},
-        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert5-out.shade", "ert0, ert1, ert2, ert3 or ert4"},
+        {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert6-out.shade", "ert0, ert1, ert2, ert3, ert4 or ert5"},
         {"bez3x3-poly-dc-trim0-newton-mid-it4-tol0.25-ert0-out.", "outputs"},
         {"bez3x3-poly-loop-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},
         {"bezdyn-poly-dc-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "dyn"},
@@ -141,6 +141,9 @@ TEST(key_method_combinations)
         {"nurbs3x3-poly-dc-trim0-bclip-mid-it32-tol0.05-ert0-out.shade", "unrolled Bézier"},
         {"nurbs3x3-poly-pow-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "for Bézier keys"},
         {"bez7x3-poly-pow-trim0-newton-cp-it6-tol0.05-ert0-out.shade", "up to degree 6"},
+        {"bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert5-out.shade", "write 'mid'"},
+        {"bez3x3-poly-dc-trim0-newton-mid-it6-tol0.05-ert5-out.shade.hull", "hull view"},
+        {"tri4-poly-dc-trim0-newton-secure-it6-tol0.05-ert5-out.shade", "Manhattan sets"},
     };
     for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
         scg_key k;
@@ -159,6 +162,8 @@ TEST(key_method_combinations)
         "nurbs3x3-rat-dc-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade.aov",
         "bez6x1-rat-pow-clip3i16-hybrid-view-it6-tol0.05-ert4-out.shade.aov",
         "bez2x3-poly-pow-trim0-bclip-mid-it32-tol0.05-ert1-out.shade",
+        "bez3x3-poly-pow-trim0-hybrid-mid-it6-tol0.05-ert5-out.shade.aov",
+        "nurbsdyn-rat-loop-fast2i16-newton-mid-it6-tol0.05-ert5-out.shade.iters",
     };
     for (size_t i = 0; i < sizeof built / sizeof built[0]; i++) {
         scg_key k;

@@ -94,12 +94,20 @@ typedef enum sc_ray_termination {
                                    it are culled between batches */
     SC_TERMINATION_MANUAL_BOTH, /* also a hit behind it is dropped before
                                    trimming and shading */
-    SC_TERMINATION_PEEL         /* depth peeling of the hulls' entries: each
+    SC_TERMINATION_PEEL,        /* depth peeling of the hulls' entries: each
                                    layer a depth pre-pass, then the
                                    intersection only where the depth test
                                    finds this layer's hull in front (ert4),
                                    while a pixel's hit lies behind a hull
                                    entry; decided on the GPU, no read-back */
+    SC_TERMINATION_LISTS        /* candidate lists per pixel for every hull
+                                   (ert5): a rectangle drawn per program, each
+                                   pixel running its hulls nearest box first
+                                   until a hit lies in front of the next box;
+                                   hulls that hold the eye or cross the near
+                                   plane are drawn as hulls (ert0). The
+                                   manual modes list only small hulls
+                                   (sc_renderer_desc.list_below_px) */
 } sc_ray_termination;
 
 /* What the image shows. shade, uv, iters and hull come from the programs;
