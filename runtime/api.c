@@ -374,7 +374,7 @@ static int like_options(const char *like, sc_key_options *opts, sc_error *err)
             snprintf(err->key, sizeof err->key, "%s", like);
         return SC_FAIL;
     }
-    for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_PEEL; t++)
+    for (int t = SC_TERMINATION_NONE; !opts->termination && t <= SC_TERMINATION_LISTS; t++)
         if (sc_key_ert((sc_ray_termination)t) == key.ert)
             opts->termination = (sc_ray_termination)t;
     return SC_OK;
@@ -386,7 +386,7 @@ static int key_options(const sc_keys_desc *desc, sc_key_options *opts, sc_error 
     if (sc_api_check_int(desc->generic_above, 0, SCG_MAX_DEGREE, "sc_keys_desc.generic_above", err) ||
         sc_api_check_int(desc->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_keys_desc.trim_iters", err) ||
         sc_api_check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_keys_desc.max_iters", err) ||
-        sc_api_check_enum(desc->termination, SC_TERMINATION_PEEL + 1,
+        sc_api_check_enum(desc->termination, SC_TERMINATION_LISTS + 1,
                    "sc_keys_desc.termination", err) ||
         sc_api_check_enum(desc->start, SC_START_VIEW + 1, "sc_keys_desc.start", err) ||
         sc_api_check_enum(desc->trim, SC_TRIM_NONE + 1, "sc_keys_desc.trim", err) ||

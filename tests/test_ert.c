@@ -550,3 +550,56 @@ TEST(ert_generated_programs)
     scg_generated_free(&gen);
     CHECK(ok);
 }
+
+/* Candidate lists (ert5, gl_lists.c): every hull of the teapot listed
+ * (`--ert lists`: one rectangle drawn, no read-back), and the image within
+ * the chart's bound of the CPU reference, which the sampled start keeps it
+ * to (docs/speed.md, "Candidate lists": the lists' failures are a fold's
+ * farther crossing). The small-hull mode lists only hulls up to the size
+ * asked. */
+TEST(ert_lists_match_the_reference)
+{
+    char cmd[2048], *out = NULL, *err_text = NULL;
+    const char *dir = test_tmpdir();
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/lists.png --size 128x128 --frames 1 --ref "
+             "--ert lists", test_cli, dir);
+    int status = test_run(cmd, &out, &err_text);
+    if (status == 1 && err_text && strstr(err_text, "OSMesa")) {
+        free(out);
+        free(err_text);
+        SKIP("no GL context");
+    }
+    CHECK_INT(status, 0);
+    CHECK_CONTAINS(out, " draw_calls=1 ");
+    CHECK_CONTAINS(out, " readbacks=0 ");
+    CHECK_CONTAINS(out, "program bez3x3-poly-pow-trim0-hybrid-mid-it6-tol0.05-ert5-out.shade.aov\n");
+    const char *acc = out ? strstr(out, "accuracy coverage_pct=") : NULL;
+    CHECK(acc != NULL);
+    double coverage = 1, fail = 1;
+    if (acc)
+        CHECK_INT(sscanf(acc, "accuracy coverage_pct=%lf fail_pct=%lf", &coverage, &fail), 2);
+    CHECK(coverage == 0);
+    CHECK(fail <= 0.1);
+    free(out);
+    free(err_text);
+
+    /* Hulls up to 4 pixels wide at 128²: some listed, the rest drawn after
+     * the lists' hits were read back; none at all with off. */
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/small.png --size 128x128 --frames 1 "
+             "--lists-below 4", test_cli, dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 0);
+    CHECK_CONTAINS(out, " program_switches=2 ");
+    free(out);
+    free(err_text);
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/none.png --size 128x128 --frames 1 "
+             "--lists-below off", test_cli, dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 0);
+    CHECK_CONTAINS(out, " program_switches=1 ");
+    free(out);
+    free(err_text);
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/bad.png --lists-below 0", test_cli, dir);
+    CHECK_INT(test_run(cmd, &out, &err_text), 2);
+    CHECK_CONTAINS(err_text, "--lists-below takes off or 1 to 65536 pixels, not '0'");
+    free(out);
+    free(err_text);
+}

@@ -32,7 +32,7 @@ int bench_sweep_parse_erts(const char *text, bench_sweep *sweep)
     enum { MAX = sizeof sweep->erts / sizeof sweep->erts[0] };
     sweep->nerts = 0;
     if (!strcmp(text, "all")) {
-        for (int m = SC_TERMINATION_NONE; m <= SC_TERMINATION_PEEL; m++)
+        for (int m = SC_TERMINATION_NONE; m <= SC_TERMINATION_LISTS; m++)
             sweep->erts[sweep->nerts++] = (sc_ray_termination)m;
         return 0;
     }

@@ -71,7 +71,10 @@ static const char usage[] =
     "                         time over the defaults'\n"
     "  --frames N             timed frames (default 5)\n"
     "  --ert LIST             early ray termination: all or a comma list of none,\n"
-    "                         conservative, manual, manual-both, peel\n"
+    "                         conservative, manual, manual-both, peel, lists\n"
+    "  --lists-below off|PX   in the manual modes, hulls at most PX pixels wide\n"
+    "                         and high on screen go through candidate lists\n"
+    "                         (default off)\n"
     "  --order LIST           draw order: all or a comma list of front-to-back,\n"
     "                         by-program, hybrid\n"
     "  --batch LIST           comma list of hulls per batch (manual early ray\n"
@@ -336,6 +339,9 @@ int cmd_bench(int argc, char **argv)
             peak = 1;
         } else if (!strcmp(a, "--update")) {
             update = 1;
+        } else if (!strcmp(a, "--lists-below") && next) {
+            if (cli_list_below_parse(argv[++i], &desc.list_below_px, &err) != SC_OK)
+                return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--ert") && next) {
             if ((status = bench_sweep_parse_erts(argv[++i], &sweep)) != 0)
                 return status;

@@ -43,8 +43,11 @@ static const char usage[] =
     "                         misses the surface\n"
     "  --trim clip|left|fast[:ITERS]   trim method of trimmed surfaces and its cap\n"
     "                         on clipping iterations per crossing (default fast:16)\n"
-    "  --ert none|conservative|manual|manual-both|peel   early ray termination\n"
-    "                         (default manual)\n"
+    "  --ert none|conservative|manual|manual-both|peel|lists   early ray\n"
+    "                         termination (default manual)\n"
+    "  --lists-below off|PX   in the manual modes, hulls at most PX pixels wide\n"
+    "                         and high on screen go through candidate lists\n"
+    "                         per pixel instead of being drawn (default off)\n"
     "  --order front-to-back|by-program|hybrid   draw order (default hybrid)\n"
     "  --batch N              hulls per batch, each seeing the hits of those\n"
     "                         before it (manual early ray termination), the\n"
@@ -177,6 +180,9 @@ int cmd_render(int argc, char **argv)
                 return cli_usage_error("render", "--trim: %s", err.message);
         } else if (!strcmp(a, "--ert") && next) {
             if (cli_termination_parse(argv[++i], &desc.termination, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
+        } else if (!strcmp(a, "--lists-below") && next) {
+            if (cli_list_below_parse(argv[++i], &desc.list_below_px, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--order") && next) {
             if (cli_order_parse(argv[++i], &desc.order, &err) != SC_OK)

@@ -23,7 +23,7 @@ static const spelling trims[] = {
 static const spelling terminations[] = {
     {"none", SC_TERMINATION_NONE}, {"conservative", SC_TERMINATION_CONSERVATIVE},
     {"manual", SC_TERMINATION_MANUAL}, {"manual-both", SC_TERMINATION_MANUAL_BOTH},
-    {"peel", SC_TERMINATION_PEEL}};
+    {"peel", SC_TERMINATION_PEEL}, {"lists", SC_TERMINATION_LISTS}};
 static const spelling orders[] = {
     {"front-to-back", SC_HULL_ORDER_FRONT_TO_BACK}, {"by-program", SC_HULL_ORDER_BY_PROGRAM},
     {"hybrid", SC_HULL_ORDER_HYBRID}};
@@ -99,8 +99,22 @@ int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *e
     int i = lookup(terminations, COUNT(terminations), text, strlen(text));
     if (i < 0)
         return fail(err, "unknown early ray termination '%s' "
-                         "(none, conservative, manual, manual-both or peel)", text);
+                         "(none, conservative, manual, manual-both, peel or lists)", text);
     *out = (sc_ray_termination)terminations[i].value;
+    return SC_OK;
+}
+
+int cli_list_below_parse(const char *text, int *out, sc_error *err)
+{
+    if (!strcmp(text, "off")) {
+        *out = 0;
+        return SC_OK;
+    }
+    char *end;
+    long n = strtol(text, &end, 10);
+    if (end == text || *end || n < 1 || n > 65536)
+        return fail(err, "--lists-below takes off or 1 to 65536 pixels, not '%s'", text);
+    *out = (int)n;
     return SC_OK;
 }
 

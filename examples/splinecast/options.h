@@ -18,6 +18,8 @@ int cli_trim_parse(const char *text, sc_trim_method *out, int *iters, sc_error *
 /* none, conservative, manual, manual-both, peel; and back ("default" for
  * SC_TERMINATION_DEFAULT). */
 int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *err);
+/* `--lists-below off|PX` (sc_renderer_desc.list_below_px: off is 0). */
+int cli_list_below_parse(const char *text, int *out, sc_error *err);
 const char *cli_termination_name(sc_ray_termination termination);
 /* front-to-back, by-program, hybrid; and back. */
 int cli_order_parse(const char *text, sc_hull_order *out, sc_error *err);

@@ -134,7 +134,7 @@ int sc_renderer_create_packed(const sc_gl *gl, const sc_pack *pack, const sc_ren
 {
     static const sc_render_desc defaults = {0};
     *out = NULL;
-    if (pack->view > SC_SHOW_REFLECT || pack->termination > SC_TERMINATION_PEEL)
+    if (pack->view > SC_SHOW_REFLECT || pack->termination > SC_TERMINATION_LISTS)
         return sc_fail(err, NULL, 0, "the pack's view or termination is not one this library "
                                      "knows");
     sc_renderer *r = sc_alloc(1, sizeof *r);

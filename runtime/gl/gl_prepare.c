@@ -468,6 +468,7 @@ void sc_renderer_destroy(sc_renderer *r)
     if (r->deferred_program)
         gl->DeleteProgram(r->deferred_program);
     sc_peel_destroy(r);
+    sc_lists_destroy(r);
     if (r->own_programs)
         sc_program_cache_destroy(r->programs);
     sc_hulls_free(&r->hulls);

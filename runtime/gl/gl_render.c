@@ -530,13 +530,23 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     const sc_hulls *h = &r->hulls;
     int ninside = 0, n = 0;
     r->outside = 0;
+    /* Candidate lists (gl_lists.c) need the renderer's own target, whose
+     * pixels they are built over: 2, every hull they can take; 1, in the
+     * manual modes, the small ones. A terrain keeps its Manhattan sets. */
+    int listing = 0;
+    /* A packed renderer (own_scene) keeps no sub-patch domains on the CPU. */
+    if (own_target && !r->manhattan && !r->scene->terrain && !r->desc.deferred && !r->own_scene)
+        listing = r->desc.ert == SC_TERMINATION_LISTS                       ? 2
+                  : manual_ert(r->desc.ert) && r->desc.list_below_px > 0 ? 1
+                                                                          : 0;
+    r->nlisted = 0;
     for (int k = 0; k < h->count; k++) {
         double d = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, eye_world);
         if (d == 0 && sc_hull_contains(h, k, eye_world))
             r->inside[ninside++] = k;
         else if (hull_outside(&h->subpatches[k], vp, eye_world))
             r->outside++;
-        else
+        else if (!listing || !sc_lists_take(r, k, d, vp, eye_world, listing == 2))
             r->items[n++] = (sort_item){.distance = d, .hull = k};
     }
     /* A terrain's prisms in sets of one Manhattan distance from the
@@ -560,7 +570,10 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
     r->peel_fallback = peeling && !peel;
     r->peel_batches = r->peel_layers = 0;
     r->peel_pending = 0;
-    for (int i = 0; r->peel_fallback && i < n; i++)
+    /* The lists' programs draw no hull: hulls the lists did not take are
+     * drawn like depth peeling's fallback, front faces, `inside` programs. */
+    int ert0_hulls = r->peel_fallback || r->desc.ert == SC_TERMINATION_LISTS;
+    for (int i = 0; ert0_hulls && i < n; i++)
         if (inside_program(r, r->hull_group[r->items[i].hull], err) != SC_OK)
             return SC_FAIL;
 
@@ -593,7 +606,8 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
                                   sc_render_group_program(r, g, 1)};
         for (int i = 0; i < 2; i++) {
             GLuint program = sc_program_gl_name(r->programs, programs[i]);
-            if (!program)
+            /* A list program's uniforms are set where it draws (gl_lists.c). */
+            if (!program || sc_program_key(r->programs, programs[i])->ert == SCG_ERT_LISTS)
                 continue;
             gl->ProgramUniformMatrix4fv(program, SCG_LOC_VIEW_PROJECTION, 1, GL_FALSE, vp);
             gl->ProgramUniform3fv(program, SCG_LOC_EYE, 1, eye);
@@ -629,7 +643,9 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
             if (r->hull_group[r->inside[i]] == g)
                 append_hull(r, &nruns, &nidx, r->inside[i], 1);
     submit_runs(r, nruns, 0, nidx, &current);
-    if (manual && ninside && n)
+    if (r->nlisted && sc_lists_draw(r, vp, eye, eye_low, footprint, &current, err) != SC_OK)
+        return SC_FAIL;
+    if (manual && (ninside || r->list_entries) && n)
         refresh_nearest(r);
     /* Batches of batch_hulls drawn hulls (all of them but in the manual
      * modes); after each, sc_nearest_t takes its hits, so that a batch sees
@@ -647,7 +663,7 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
                 culled++;
                 continue;
             }
-            append_hull(r, &nruns, &nidx, k, r->peel_fallback ? 2 : 0);
+            append_hull(r, &nruns, &nidx, k, ert0_hulls ? 2 : 0);
             drawn++;
         }
         r->culled += culled;

@@ -42,6 +42,9 @@ typedef struct sc_render_desc {
                                double),
                                and per bucket of the hybrid order
                                (SC_RENDER_DEFAULT_BATCH_HULLS) */
+    int list_below_px;      /* manual modes: hulls at most this many pixels
+                               wide and high on screen go through candidate
+                               lists; 0: none */
     sc_program_cache *programs; /* the cache to take programs from, shared
                                with whoever else uses it and outliving the
                                renderer; NULL: a cache of the renderer's own */

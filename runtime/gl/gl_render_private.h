@@ -99,7 +99,27 @@ typedef struct group {
     /* colour_frames: program and inside with the AOVs as well, for the
      * frames that write them; compiled when a frame first needs them. */
     sc_program aov, aov_inside;
+    /* The same keys as ert5 (start mid), for hulls drawn through candidate
+     * lists (gl_lists.c); compiled when a frame first lists one. */
+    sc_program lists, aov_lists;
 } group;
+
+/* A hull of the frame drawn through candidate lists (gl_lists.c): its
+ * group, the distance from the eye to its box, and the pixels
+ * [rect[0], rect[2]) × [rect[1], rect[3]) whose lists hold it. */
+typedef struct list_hull {
+    int hull, group;
+    double distance;
+    int rect[4];
+} list_hull;
+
+/* One rectangle drawn with a group's list program: its pixels' lists
+ * start at entry first_head of the heads. */
+typedef struct list_draw {
+    int group;
+    int rect[4];
+    int first_head;
+} list_draw;
 
 /* One draw call of a frame. */
 typedef struct draw_run {
@@ -225,6 +245,19 @@ struct sc_renderer {
                                 front of their pixel's best hit after the
                                 last layer (0 unless the layers ran out) */
     int peel_fallback;       /* the last frame fell back (gl_render.c) */
+    /* Candidate lists (gl_lists.c): the frame's listed hulls, per slot
+     * their domain, record and box distance, the heads and entries of the
+     * pixels' lists, the rectangles drawn; their buffers and textures
+     * (heads, entries, slots) and an empty vertex array for the
+     * rectangles. */
+    list_hull *listed;
+    int nlisted, listed_cap;
+    float *list_slots;
+    uint32_t *list_heads, *list_items;
+    list_draw *list_draws;
+    size_t list_slots_cap, list_heads_cap, list_items_cap, list_draws_cap;
+    GLuint list_buffers[3], list_textures[3], list_vertex_array;
+    long long list_entries;  /* of the last frame: entries of all lists */
 };
 
 /* ---- preparation steps gl_prepare.c and gl_pack.c share ---- */
@@ -294,6 +327,20 @@ int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_e
 /* After the frame was waited for: its layers and what was left pending. */
 void sc_peel_finish(sc_renderer *r);
 void sc_peel_destroy(sc_renderer *r);
+
+/* Candidate lists (gl_lists.c). Adds hull k (not holding the eye; box at
+ * `distance` from the eye) to the frame's listed hulls when its vertices
+ * project inside the near and far planes and, unless every_size, into a
+ * rectangle at most desc.list_below_px wide and high on the renderer's
+ * target; 1 when it did. */
+int sc_lists_take(sc_renderer *r, int k, double distance, const float vp[16],
+                  const double eye[3], int every_size);
+/* Builds the listed hulls' per-pixel lists, sends them and draws one
+ * rectangle per group with its ert5 program, into the renderer's own
+ * target, bound, under the depth test. */
+int sc_lists_draw(sc_renderer *r, const float vp[16], const float eye[3], const float eye_low[3],
+                  float footprint, GLuint *current, sc_error *err);
+void sc_lists_destroy(sc_renderer *r);
 /* Into the bound framebuffer (an application's) at viewport (x, y, w, h):
  * the colour and depth of the renderer's target (its last frame, w × h)
  * wherever it holds a hit, under the depth test the caller set. */

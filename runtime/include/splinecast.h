@@ -485,6 +485,14 @@ typedef struct sc_renderer_desc {
                                   before it), the first of depth peeling's
                                   doubling batches, and per hybrid bucket
                                   (32) */
+    int list_below_px;         /* in the manual termination modes, hulls
+                                  whose screen rectangle is at most this
+                                  many pixels wide and high are drawn
+                                  through candidate lists per pixel (ert5
+                                  programs) instead of as hulls; 0: none
+                                  (the default: docs/speed.md, "Candidate
+                                  lists", says where the lists lose
+                                  accuracy) */
     size_t gpu_memory_budget;  /* most bytes of GPU data (patch data, hulls,
                                   colours: sc_renderer_info.gpu_bytes) the
                                   renderer may upload; a scene that needs

@@ -33,6 +33,7 @@ scg_ert sc_key_ert(sc_ray_termination termination)
     case SC_TERMINATION_MANUAL: return SCG_ERT_BEFORE;
     case SC_TERMINATION_MANUAL_BOTH: return SCG_ERT_BOTH;
     case SC_TERMINATION_PEEL: return SCG_ERT_PEEL;
+    case SC_TERMINATION_LISTS: return SCG_ERT_LISTS;
     default: return SCG_ERT_NONE;
     }
 }
@@ -92,6 +93,12 @@ void sc_surface_key(const sc_surface *s, const sc_key_options *opts, scg_key *ke
         key->start = SC_START_MID; /* the only start these keys spell */
     key->ert = sc_key_ert(opts->termination);
     key->outputs = opts->outputs ? opts->outputs : SC_KEY_DEFAULT_OUTPUTS;
+    /* Candidate lists draw no hull: no start to interpolate over one, and
+     * nothing for the hull view to show (it draws every hull, ert0). */
+    if (key->ert == SCG_ERT_LISTS)
+        key->start = SC_START_MID;
+    if (key->ert == SCG_ERT_LISTS && (key->outputs & SCG_OUTPUT_HULLVIEW))
+        key->ert = SCG_ERT_NONE;
 }
 
 static int compare_keys(const void *a, const void *b) { return strcmp(a, b); }
