@@ -121,68 +121,22 @@ static int list_program(sc_renderer *r, int g, sc_program *out, sc_error *err)
     return SC_OK;
 }
 
-/* The 4 × 4 inverse of a column-major matrix, in double; 0 when singular. */
-static int invert4(const float m[16], double out[16])
-{
-    double a[4][8];
-    for (int row = 0; row < 4; row++)
-        for (int col = 0; col < 4; col++) {
-            a[row][col] = m[4 * col + row];
-            a[row][4 + col] = row == col;
-        }
-    for (int col = 0; col < 4; col++) {
-        int pivot = col;
-        for (int row = col + 1; row < 4; row++)
-            if (fabs(a[row][col]) > fabs(a[pivot][col]))
-                pivot = row;
-        if (a[pivot][col] == 0)
-            return 0;
-        for (int j = 0; j < 8; j++) {
-            double t = a[col][j];
-            a[col][j] = a[pivot][j];
-            a[pivot][j] = t;
-        }
-        for (int row = 0; row < 4; row++) {
-            if (row == col)
-                continue;
-            double f = a[row][col] / a[col][col];
-            for (int j = 0; j < 8; j++)
-                a[row][j] -= f * a[col][j];
-        }
-    }
-    for (int row = 0; row < 4; row++)
-        for (int col = 0; col < 4; col++)
-            out[4 * col + row] = a[row][4 + col] / a[row][row];
-    return 1;
-}
-
 /* sc_pixel_to_ray: window (x, y, 1) to a world direction of the pixel's
- * ray, the far plane's point through the pixel relative to the eye (the
- * projection is the camera's moved to the origin), up to a positive
- * factor, which the program normalises away. */
-static void pixel_to_ray(const float vp[16], int width, int height, float m[9])
+ * ray, from the camera frame sc_camera_gl_matrices builds the projection
+ * from: forward + (2x/w − 1)·tan·aspect·right + (2y/h − 1)·tan·up. Lists
+ * are drawn only in the renderer's own frames (draw_frame), whose camera
+ * r->camera is. */
+static void pixel_to_ray(const sc_camera *cam, float m[9])
 {
-    double inv[16];
-    if (!invert4(vp, inv)) {
-        memset(m, 0, 9 * sizeof *m);
-        return;
+    double fwd[3], right[3], up[3];
+    sc_camera_frame(cam, fwd, right, up);
+    double ty = tan(0.5 * cam->fovy_deg * M_PI / 180.0);
+    double tx = ty * cam->width / cam->height;
+    for (int c = 0; c < 3; c++) {
+        m[c] = (float)(2 * tx / cam->width * right[c]);
+        m[3 + c] = (float)(2 * ty / cam->height * up[c]);
+        m[6 + c] = (float)(fwd[c] - tx * right[c] - ty * up[c]);
     }
-    /* (x, y, 1) → ndc (2x/w − 1, 2y/h − 1, 1, 1) → inv × ndc. */
-    double to_ndc[4][3] = {{2.0 / width, 0, -1}, {0, 2.0 / height, -1}, {0, 0, 1}, {0, 0, 1}};
-    double full[4][3];
-    for (int row = 0; row < 4; row++)
-        for (int col = 0; col < 3; col++) {
-            full[row][col] = 0;
-            for (int i = 0; i < 4; i++)
-                full[row][col] += inv[4 * i + row] * to_ndc[i][col];
-        }
-    /* The point is full × (x, y, 1) divided by its w, whose sign at the
-     * image's centre is its sign everywhere in front of the eye. */
-    double w = full[3][0] * 0.5 * width + full[3][1] * 0.5 * height + full[3][2];
-    double sign = w < 0 ? -1 : 1;
-    for (int row = 0; row < 3; row++)
-        for (int col = 0; col < 3; col++)
-            m[3 * col + row] = (float)(sign * full[row][col]);
 }
 
 /* Sends n elements of one list array, re-attached to its texture. */
@@ -295,7 +249,7 @@ int sc_lists_draw(sc_renderer *r, const float vp[16], const float eye[3], const 
     gl->BindTextureUnit(SCG_UNIT_LIST_HULLS, r->list_textures[2]);
 
     float to_ray[9];
-    pixel_to_ray(vp, width, height, to_ray);
+    pixel_to_ray(&r->camera, to_ray);
     gl->BindVertexArray(r->list_vertex_array);
     gl->Disable(GL_CULL_FACE);
     for (int d = 0; d < ndraws; d++) {
