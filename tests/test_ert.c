@@ -551,6 +551,16 @@ TEST(ert_generated_programs)
     CHECK(ok);
 }
 
+/* `splinecast render teapot` at 128² with `options`, into the test's
+ * folder; its exit status, stdout and stderr. */
+static int render_teapot(const char *name, const char *options, char **out, char **err_text)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/%s.png --size 128x128 --frames 1 %s",
+             test_cli, test_tmpdir(), name, options);
+    return test_run(cmd, out, err_text);
+}
+
 /* Candidate lists (ert5, gl_lists.c): every hull of the teapot listed
  * (`--ert lists`: one rectangle drawn, no read-back), and the image within
  * the chart's bound of the CPU reference, which the sampled start keeps it
@@ -559,11 +569,8 @@ TEST(ert_generated_programs)
  * asked. */
 TEST(ert_lists_match_the_reference)
 {
-    char cmd[2048], *out = NULL, *err_text = NULL;
-    const char *dir = test_tmpdir();
-    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/lists.png --size 128x128 --frames 1 --ref "
-             "--ert lists", test_cli, dir);
-    int status = test_run(cmd, &out, &err_text);
+    char *out = NULL, *err_text = NULL;
+    int status = render_teapot("lists", "--ref --ert lists", &out, &err_text);
     if (status == 1 && err_text && strstr(err_text, "OSMesa")) {
         free(out);
         free(err_text);
@@ -583,23 +590,18 @@ TEST(ert_lists_match_the_reference)
     free(out);
     free(err_text);
 
-    /* Hulls up to 4 pixels wide at 128²: some listed, the rest drawn after
-     * the lists' hits were read back; none at all with off. */
-    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/small.png --size 128x128 --frames 1 "
-             "--lists-below 4", test_cli, dir);
-    CHECK_INT(test_run(cmd, &out, &err_text), 0);
-    CHECK_CONTAINS(out, " program_switches=2 ");
-    free(out);
-    free(err_text);
-    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/none.png --size 128x128 --frames 1 "
-             "--lists-below off", test_cli, dir);
-    CHECK_INT(test_run(cmd, &out, &err_text), 0);
-    CHECK_CONTAINS(out, " program_switches=1 ");
-    free(out);
-    free(err_text);
-    snprintf(cmd, sizeof cmd, "%s render teapot -o %s/bad.png --lists-below 0", test_cli, dir);
-    CHECK_INT(test_run(cmd, &out, &err_text), 2);
-    CHECK_CONTAINS(err_text, "--lists-below takes off or 1 to 65536 pixels, not '0'");
-    free(out);
-    free(err_text);
+    /* Hulls up to 4 pixels wide at 128²: some listed (a second program),
+     * the rest drawn after the lists' hits were read back; none with off. */
+    static const struct { const char *name, *options, *says; int status; } cases[] = {
+        {"small", "--lists-below 4", " program_switches=2 ", 0},
+        {"none", "--lists-below off", " program_switches=1 ", 0},
+        {"bad", "--lists-below 0", "--lists-below takes off or 1 to 65536 pixels, not '0'", 2},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        CHECK_INT(render_teapot(cases[i].name, cases[i].options, &out, &err_text),
+                  cases[i].status);
+        CHECK_CONTAINS(cases[i].status ? err_text : out, cases[i].says);
+        free(out);
+        free(err_text);
+    }
 }
