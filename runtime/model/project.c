@@ -17,6 +17,7 @@ enum {
     MAX_DEPTH = 12,        /* 4096 pieces per curve at most */
     GRID = 24,             /* global search for a start point */
     NEWTON_STEPS = 40,
+    STALLS = 3,            /* Newton steps without progress before it stops */
     MAX_SEAMS = 64         /* seam runs remembered per loop */
 };
 
@@ -26,12 +27,18 @@ typedef struct proj {
     int closed[2];
     double tol, dev;
     /* Set when a point of a curve lies farther than off_limit from the
-     * surface even by the global search: the loop is refused, so nothing
-     * more is refined (a hostile file's off-surface curve would otherwise
-     * split every piece to MAX_DEPTH, each split a global search). */
+     * surface even by the global search, or a fitted piece strays farther:
+     * the loop is refused, so nothing more is sampled or refined (a hostile
+     * file's off-surface curve would otherwise split every piece to
+     * MAX_DEPTH, each split a global search). */
     double off_limit;
     int off;
     int oom; /* memory ran out: nothing more is refined, the loop fails */
+    /* The global search's grid of surface points, evaluated once per loop:
+     * an edge lying off its surface by more than the tolerance searches at
+     * every sample, and the grid's evaluations were most of the reading. */
+    double grid[(GRID + 1) * (GRID + 1)][3];
+    int have_grid;
 } proj;
 
 typedef struct sample {
@@ -89,15 +96,29 @@ static int solve_jt(const double su[3], const double sv[3], const double r[3], d
 }
 
 /* Closest point by Gauss–Newton from uv (the target lies on the surface,
- * so the residual vanishes and first derivatives suffice). */
+ * so the residual vanishes and first derivatives suffice). Where the target
+ * lies off the surface, Gauss–Newton creeps or circles instead of
+ * converging: after STALLS steps that bring it no nearer it stops, at the
+ * nearest point it reached. */
 static double newton(const proj *pj, const double target[3], double uv[2])
 {
-    double p[3], su[3], sv[3], r[3], step[2];
+    double p[3], su[3], sv[3], r[3], step[2], best = INFINITY, best_uv[2] = {uv[0], uv[1]};
     double size = fmax(pj->dom[1] - pj->dom[0], pj->dom[3] - pj->dom[2]);
-    for (int it = 0; it < NEWTON_STEPS; it++) {
+    for (int it = 0, stalls = 0; it < NEWTON_STEPS; it++) {
         eval(pj, uv, p, su, sv);
         for (int d = 0; d < 3; d++)
             r[d] = target[d] - p[d];
+        double dist = sqrt(dot(r, r));
+        if (dist < best * (1 - 1e-12)) {
+            stalls = 0;
+        } else if (++stalls >= STALLS) {
+            break;
+        }
+        if (dist < best) {
+            best = dist;
+            best_uv[0] = uv[0];
+            best_uv[1] = uv[1];
+        }
         solve_jt(su, sv, r, step);
         /* Damped: a step longer than a quarter of the domain is cut. */
         double len = hypot(step[0], step[1]), cap = 0.25 * size;
@@ -112,19 +133,26 @@ static double newton(const proj *pj, const double target[3], double uv[2])
             break;
     }
     eval(pj, uv, p, NULL, NULL);
-    return dist3(p, target);
+    double dist = dist3(p, target);
+    if (dist <= best)
+        return dist;
+    uv[0] = best_uv[0];
+    uv[1] = best_uv[1];
+    return best;
 }
 
 /* Best grid point, then Newton; the result taken nearest to `near` among
  * the periods of a closed direction. */
-static double global(const proj *pj, const double target[3], const double *near, double uv[2])
+static double global(proj *pj, const double target[3], const double *near, double uv[2])
 {
-    double best = INFINITY, p[3];
+    double best = INFINITY;
     for (int j = 0; j <= GRID; j++)
         for (int i = 0; i <= GRID; i++) {
             double q[2] = {pj->dom[0] + (pj->dom[1] - pj->dom[0]) * i / GRID,
                            pj->dom[2] + (pj->dom[3] - pj->dom[2]) * j / GRID};
-            eval(pj, q, p, NULL, NULL);
+            double *p = pj->grid[j * (GRID + 1) + i];
+            if (!pj->have_grid)
+                eval(pj, q, p, NULL, NULL);
             double d = dist3(p, target);
             if (d < best) {
                 best = d;
@@ -132,6 +160,7 @@ static double global(const proj *pj, const double target[3], const double *near,
                 uv[1] = q[1];
             }
         }
+    pj->have_grid = 1;
     double d = newton(pj, target, uv);
     for (int k = 0; near && k < 2; k++)
         if (pj->closed[k]) {
@@ -240,6 +269,9 @@ static void refine(proj *pj, const sc_curve *c, const sample *a, const sample *b
         return;
     }
     pj->dev = fmax(pj->dev, total);
+    /* Past the limit the loop is refused: nothing more is worth refining. */
+    if (pj->dev > pj->off_limit)
+        pj->off = 1;
     push_sample(pj, out, b);
 }
 
@@ -358,7 +390,7 @@ static void follow(proj *pj, const sc_curve *c, const double start[2], piece_lis
     sample_at(pj, c, t0, start, &a);
     off_pole(pj, c, &a, t0 + in);
     push_sample(pj, l, &a);
-    for (int k = 1; k <= steps && !pj->oom; k++) {
+    for (int k = 1; k <= steps && !pj->oom && !pj->off; k++) {
         sample b, last = l->s[l->n - 1];
         sample_at(pj, c, t0 + (t1 - t0) * k / steps, last.uv, &b);
         if (k == steps)
