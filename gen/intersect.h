@@ -78,6 +78,11 @@ void scg_build_view_start(scg_builder *b, const scg_key *key, scg_method_fn meth
 /* Point and partials at (u, v) in the ray's frame (vec3 each: F in x and
  * y, the coordinate along the ray's unit axis in z). */
 void scg_isect_eval_in_frame(scg_isect *c, scg_value uv, scg_value f[3]);
+/* Bézier keys: the record's points restricted to the interval iv = (u0,
+ * u1, v0, v1) (vec4), Euclidean, in the ray's frame (vec3: F1, F2, depth),
+ * into e[(p+1)(q+1)]; when `homogeneous` is not NULL, also as they were
+ * before the division by w (the same as e when polynomial). */
+void scg_isect_restricted_points(scg_isect *c, scg_value iv, scg_value *e, scg_value *homogeneous);
 /* True when uv lies in [lo.x, hi.x] × [lo.y, hi.y]. */
 scg_value scg_isect_inside(scg_builder *b, scg_value uv, scg_value lo, scg_value hi);
 /* x1·y1 − x2·y2: determinants and Cramer's rule. */

@@ -26,53 +26,6 @@
  * silhouette. */
 #define QUAD_SLACK 0.01f
 
-/* Restriction of a Bézier curve (p+1 points, any float type) to [a, b]:
- * split at b keeping the left part, then that at a/b keeping the right. */
-static void restrict_curve(scg_builder *b, const scg_value *in, int p, scg_value a, scg_value bnd,
-                           scg_value *out)
-{
-    scg_value d[SCG_MAX_DEGREE + 1] = {0}, left[SCG_MAX_DEGREE + 1] = {0};
-    for (int i = 0; i <= p; i++)
-        d[i] = in[i];
-    left[0] = d[0];
-    for (int r = 1; r <= p; r++) {
-        for (int i = 0; i <= p - r; i++)
-            d[i] = scg_lerp(b, d[i], d[i + 1], bnd);
-        left[r] = d[0];
-    }
-    scg_value t = scg_div(b, a, bnd);
-    out[p] = left[p];
-    for (int r = 1; r <= p; r++) {
-        for (int i = 0; i <= p - r; i++)
-            left[i] = scg_lerp(b, left[i], left[i + 1], t);
-        out[p - r] = left[p - r];
-    }
-}
-
-void scg_piece_points(scg_isect *c, scg_value iv, scg_value *e, scg_value *homogeneous)
-{
-    scg_builder *b = c->b;
-    int p = c->p, q = c->q, n = (p + 1) * (q + 1);
-    scg_value u0 = scg_comp(b, iv, 0), u1 = scg_comp(b, iv, 1);
-    scg_value v0 = scg_comp(b, iv, 2), v1 = scg_comp(b, iv, 3);
-    scg_value rows[(SCG_MAX_DEGREE + 1) * (SCG_MAX_DEGREE + 1)];
-    for (int j = 0; j <= q; j++)
-        restrict_curve(b, c->proj + j * (p + 1), p, u0, u1, rows + j * (p + 1));
-    scg_value col[SCG_MAX_DEGREE + 1] = {0}, cut[SCG_MAX_DEGREE + 1] = {0};
-    for (int i = 0; i <= p; i++) {
-        for (int j = 0; j <= q; j++)
-            col[j] = rows[j * (p + 1) + i];
-        restrict_curve(b, col, q, v0, v1, cut);
-        for (int j = 0; j <= q; j++)
-            e[j * (p + 1) + i] = cut[j];
-    }
-    for (int k = 0; homogeneous && k < n; k++)
-        homogeneous[k] = e[k];
-    if (c->key->rational)
-        for (int k = 0; k < n; k++)
-            e[k] = scg_div(b, scg_xyz(b, e[k]), scg_comp(b, e[k], 3));
-}
-
 /* |x − y| for two points. */
 static scg_value distance(scg_builder *b, scg_value x, scg_value y)
 {
@@ -92,7 +45,7 @@ scg_value scg_piece_box(scg_isect *c, const scg_pieces *s, scg_value iv, scg_val
 {
     scg_builder *b = c->b;
     int n = (c->p + 1) * (c->q + 1);
-    scg_piece_points(c, iv, e, homogeneous);
+    scg_isect_restricted_points(c, iv, e, homogeneous);
     scg_name(b, "box");
     scg_value lo = e[0], hi = e[0];
     for (int k = 1; k < n; k++) {

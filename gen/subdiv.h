@@ -35,12 +35,8 @@ void scg_piece_search(scg_isect *c, scg_value lo, scg_value hi, int depth, int s
  * termination stopped). */
 void scg_piece_method(scg_isect *c, scg_value uv0, scg_value behind, int depth, int steps,
                       scg_piece_visit on_piece);
-/* The record's points restricted to the interval iv = (u0, u1, v0, v1)
- * (vec4), Euclidean, in the ray's frame (vec3: F1, F2, depth), into
- * e[(p+1)(q+1)]; when `homogeneous` is not NULL, also as they were before
- * the division by w (the same as e when polynomial). */
-void scg_piece_points(scg_isect *c, scg_value iv, scg_value *e, scg_value *homogeneous);
-/* The points of iv (into e, and homogeneous when not NULL) and their box:
+/* The points of iv (scg_isect_restricted_points: into e, and homogeneous
+ * when not NULL) and their box:
  * returns whether the box holds the ray and begins before the nearest
  * hit; near and size get its nearest depth and L1 size. */
 scg_value scg_piece_box(scg_isect *c, const scg_pieces *s, scg_value iv, scg_value *e,
