@@ -103,8 +103,8 @@ typedef enum scg_ert {
                                  then becomes. Not with the hull view, which
                                  writes the hull's depth where rays miss */
     SCG_ERT_LISTS             /* "ert5": candidate lists per pixel
-                                 (runtime/gl/gl_lists.c): drawn over a
-                                 rectangle of pixels, the program runs each
+                                 (runtime/gl/gl_lists.c): drawn over tiles
+                                 of pixels, the program runs each
                                  pixel's list of hulls, nearest box first,
                                  until the next box lies behind its nearest
                                  hit; a hit is kept only when nearer. Start

@@ -64,9 +64,9 @@
     /* ert5 fragment stage: the drawn rectangle's first pixel (x, y), its */         \
     /* width, and its first entry in sc_list_heads */                                \
     X(LIST_CELLS, 23, "sc_list_cells", "ivec4")                                      \
-    /* ert5 vertex stage: the rectangle in normalised device coordinates */          \
-    /* (x0, y0, x1, y1) */                                                           \
-    X(LIST_QUAD, 24, "sc_list_quad", "vec4")
+    /* ert5 vertex stage: the draw's first tile in sc_list_tiles, the */             \
+    /* target's width and height, and the tiles' side, in pixels */                  \
+    X(LIST_TILE, 24, "sc_list_tile", "ivec4")
 
 /* Textures, bound to the texture unit equal to their binding: X(ID, unit,
  * GLSL name, sampler type, components of a texel read). POINTS, KNOTS and
@@ -89,7 +89,10 @@
     X(LIST_ITEMS, 9, "sc_list_items", "usamplerBuffer", 1)                           \
     /* per slot two texels: the sub-patch domain (u0, u1, v0, v1); the */            \
     /* record index and the distance from the eye to the hull's box */               \
-    X(LIST_HULLS, 10, "sc_list_hulls", "samplerBuffer", 4)
+    X(LIST_HULLS, 10, "sc_list_hulls", "samplerBuffer", 4)                           \
+    /* ert5 vertex stage: per tile of pixels that hold candidates, its first */      \
+    /* pixel, x | y << 16 */                                                         \
+    X(LIST_TILES, 11, "sc_list_tiles", "usamplerBuffer", 1)
 
 /* Shader storage: the fragment programs that write the AOVs count, in one
  * std430 block at binding SCG_BUFFER_COUNTERS, the intersections they run

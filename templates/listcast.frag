@@ -22,7 +22,7 @@
 {{FUNCTIONS}}
 void main()
 {
-    // This pixel's candidates: the hulls whose screen rectangle holds its
+    // This pixel's candidates: the hulls whose projected outline holds its
     // centre, nearest box first (runtime/gl/gl_lists.c).
     ivec2 cell = ivec2(gl_FragCoord.xy) - sc_list_cells.xy;
     int head = sc_list_cells.w + cell.y * sc_list_cells.z + cell.x;

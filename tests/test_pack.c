@@ -58,8 +58,13 @@ TEST(pack_renderer_draws_the_scene_s_image)
         sc_shutdown();
         SKIP("no GL context: %s", err.message);
     }
+    /* A packed renderer draws every hull as a hull (it keeps no sub-patch
+     * domains on the CPU for candidate lists): the direct one too, for
+     * the same pixels. */
     sc_renderer_id direct, packed;
-    CHECK_INT(sc_make_renderer(ctx, scene, NULL, &direct, &err), SC_OK);
+    CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.list_below_px = SC_LISTS_OFF},
+                               &direct, &err),
+              SC_OK);
     CHECK_INT(sc_make_renderer(ctx, (sc_scene_id){0}, &(sc_renderer_desc){.pack = pack}, &packed,
                                &err),
               SC_OK);
@@ -215,6 +220,18 @@ TEST(pack_programs_from_gen_folder)
     CHECK_INT(sc_make_renderer(ctx, scene, NULL, &r, &err), SC_OK);
     CHECK_INT(log.generated, 0);
     CHECK_INT(log.read, 1);
+    /* A frame whose small hulls the default would list: the folder holds
+     * no list program (gen --scene writes the scene's keys), so they are
+     * drawn as hulls, with what the folder has. */
+    sc_frame_id frame;
+    CHECK_INT(sc_render(r, &(sc_camera_desc){.width = 128, .height = 128}, &frame, &err), SC_OK);
+    CHECK_INT(log.generated, 0);
+    sc_frame_info info;
+    CHECK_INT(sc_query_frame_info(frame, &info, &err), SC_OK);
+    long hits = 0;
+    for (int p = 0; p < 128 * 128; p++)
+        hits += info.surface[p] >= 0;
+    CHECK(hits > 128 * 128 / 20);
     /* Another key: not in the folder. */
     sc_renderer_id other;
     CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.max_iters = 3}, &other, &err),

@@ -79,10 +79,10 @@ TEST(scale_scenes_read_back)
     sc_scene_free(&sheet);
 }
 
-/* Renders path in its default view at w × h with the default settings and
- * compares with the CPU reference; the frame's counts in *stats. 1, 0 on
- * failure, -1 without a GL context. */
-static int render_scale(const char *path, int w, int h, sc_accuracy *acc,
+/* Renders path in its default view at w × h with the default settings but
+ * list_below_px and compares with the CPU reference; the frame's counts
+ * in *stats. 1, 0 on failure, -1 without a GL context. */
+static int render_scale(const char *path, int w, int h, int list_below_px, sc_accuracy *acc,
                         sc_render_stats *stats, const char **why)
 {
     sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, why);
@@ -101,7 +101,8 @@ static int render_scale(const char *path, int w, int h, sc_accuracy *acc,
     int ok = 0;
     if (sc_refcast_cached(path, &cam, test_tmpdir(), &ref, &err) == SC_OK) {
         sc_renderer *r;
-        if (sc_renderer_create(sc_gl_context_gl(ctx), &scene, NULL, &r, &err) == SC_OK) {
+        sc_render_desc desc = {.list_below_px = list_below_px};
+        if (sc_renderer_create(sc_gl_context_gl(ctx), &scene, &desc, &r, &err) == SC_OK) {
             if (sc_renderer_draw(r, &cam, &err) == SC_OK &&
                 sc_renderer_read(r, NULL, &aov, &err) == SC_OK) {
                 ok = sc_accuracy_compare(&ref, &aov, acc, &err) == SC_OK;
@@ -128,25 +129,31 @@ static void check_accurate(const sc_accuracy *acc, const char *what)
 }
 
 /* 16 × 12 teapots (6,144 patches) at 192 × 192: every hull a few pixels
- * across, most of the rays through them misses (gen/hybrid.c skips the
- * restarts of rays that pass wide of a record), every pixel as the
- * reference sees it. */
+ * across, every pixel as the reference sees it, drawn as hulls and through
+ * candidate lists (the default at that size). As hulls, most of the rays
+ * miss (gen/hybrid.c skips the restarts of rays that pass wide of a
+ * record); the lists run a ray only where a hull's outline holds the
+ * pixel, and stop at the first box behind a hit. */
 TEST(scale_grid_renders)
 {
     const char *dir = make_scenes(16, 12, 4);
     CHECK(dir != NULL);
-    sc_accuracy acc;
-    sc_render_stats stats;
+    sc_accuracy acc, hulls_acc;
+    sc_render_stats stats, hulls_stats;
     const char *why;
-    int ok = render_scale(scene_path(dir, "teapot_grid.bpt"), 192, 192, &acc, &stats, &why);
+    const char *path = scene_path(dir, "teapot_grid.bpt");
+    int ok = render_scale(path, 192, 192, SC_LISTS_OFF, &hulls_acc, &hulls_stats, &why);
     if (ok < 0)
         SKIP("no GL context: %s", why);
     CHECK(ok);
-    CHECK(stats.hulls >= 16 * 12 * 32);  /* adaptive hulls may split */
-    CHECK(acc.ref_hits > 192 * 192 / 20);
-    /* Many more rays than covered pixels: the hulls' slack is wide here. */
-    CHECK(stats.intersections > 2 * acc.ref_hits);
-    check_accurate(&acc, "grid");
+    CHECK(hulls_stats.hulls >= 16 * 12 * 32);  /* adaptive hulls may split */
+    CHECK(hulls_acc.ref_hits > 192 * 192 / 20);
+    CHECK(hulls_stats.intersections > 2 * hulls_acc.ref_hits);
+    check_accurate(&hulls_acc, "grid as hulls");
+    CHECK(render_scale(path, 192, 192, 0, &acc, &stats, &why) == 1);
+    CHECK(stats.intersections < 2 * acc.ref_hits);
+    CHECK(4 * stats.intersections < 3 * hulls_stats.intersections);
+    check_accurate(&acc, "grid through lists");
 }
 
 /* One B-spline surface of 60 × 60 spans (3,600 Bézier patches, one
@@ -158,7 +165,7 @@ TEST(scale_sheet_renders)
     sc_accuracy acc;
     sc_render_stats stats;
     const char *why;
-    int ok = render_scale(scene_path(dir, "bspline_sheet.obj"), 160, 160, &acc, &stats, &why);
+    int ok = render_scale(scene_path(dir, "bspline_sheet.obj"), 160, 160, 0, &acc, &stats, &why);
     if (ok < 0)
         SKIP("no GL context: %s", why);
     CHECK(ok);

@@ -74,7 +74,7 @@ static const char usage[] =
     "                         conservative, manual, manual-both, peel, lists\n"
     "  --lists-below off|PX   in the manual modes, hulls at most PX pixels wide\n"
     "                         and high on screen go through candidate lists\n"
-    "                         (default off)\n"
+    "                         (default 8)\n"
     "  --order LIST           draw order: all or a comma list of front-to-back,\n"
     "                         by-program, hybrid\n"
     "  --batch LIST           comma list of hulls per batch (manual early ray\n"

@@ -47,7 +47,7 @@ static const char usage[] =
     "                         termination (default manual)\n"
     "  --lists-below off|PX   in the manual modes, hulls at most PX pixels wide\n"
     "                         and high on screen go through candidate lists\n"
-    "                         per pixel instead of being drawn (default off)\n"
+    "                         per pixel instead of being drawn (default 8)\n"
     "  --order front-to-back|by-program|hybrid   draw order (default hybrid)\n"
     "  --batch N              hulls per batch, each seeing the hits of those\n"
     "                         before it (manual early ray termination), the\n"

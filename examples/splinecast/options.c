@@ -107,7 +107,7 @@ int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *e
 int cli_list_below_parse(const char *text, int *out, sc_error *err)
 {
     if (!strcmp(text, "off")) {
-        *out = 0;
+        *out = SC_LISTS_OFF;
         return SC_OK;
     }
     char *end;

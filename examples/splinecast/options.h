@@ -15,10 +15,11 @@ int cli_show_parse(const char *text, sc_show *out, sc_error *err);
 /* clip, left or fast, optionally ":ITERS" (1 … SC_MAX_TRIM_ITERS); *iters is left alone
  * when no cap is given. */
 int cli_trim_parse(const char *text, sc_trim_method *out, int *iters, sc_error *err);
-/* none, conservative, manual, manual-both, peel; and back ("default" for
+/* none, conservative, manual, manual-both, peel, lists; and back ("default" for
  * SC_TERMINATION_DEFAULT). */
 int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *err);
-/* `--lists-below off|PX` (sc_renderer_desc.list_below_px: off is 0). */
+/* `--lists-below off|PX` (sc_renderer_desc.list_below_px: off is
+ * SC_LISTS_OFF). */
 int cli_list_below_parse(const char *text, int *out, sc_error *err);
 const char *cli_termination_name(sc_ray_termination termination);
 /* front-to-back, by-program, hybrid; and back. */

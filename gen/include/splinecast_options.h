@@ -101,8 +101,8 @@ typedef enum sc_ray_termination {
                                    while a pixel's hit lies behind a hull
                                    entry; decided on the GPU, no read-back */
     SC_TERMINATION_LISTS        /* candidate lists per pixel for every hull
-                                   (ert5): a rectangle drawn per program, each
-                                   pixel running its hulls nearest box first
+                                   (ert5): tiles of pixels drawn per program,
+                                   each pixel running its hulls nearest box first
                                    until a hit lies in front of the next box;
                                    hulls that hold the eye or cross the near
                                    plane are drawn as hulls (ert0). The
@@ -161,6 +161,12 @@ typedef enum sc_hull_order {
 #define SC_DEFAULT_TERMINATION SC_TERMINATION_MANUAL
 #define SC_RENDER_DEFAULT_ORDER SC_HULL_ORDER_HYBRID
 #define SC_RENDER_DEFAULT_BATCH_HULLS 32
+/* What a zero list_below_px means: hulls up to 8 pixels wide and high go
+ * through candidate lists (docs/speed.md, "Candidate lists": the 100,352-
+ * patch grid 3.1-3.7x faster, the tea set as exact). SC_LISTS_OFF lists
+ * none. */
+#define SC_RENDER_DEFAULT_LIST_BELOW_PX 8
+#define SC_LISTS_OFF (-1)
 
 /* What SC_METHOD_DEFAULT means: the hybrid, which on the tea set and
  * PRO20359-L1 closes Newton's holes and fails no pixel Newton gets right,

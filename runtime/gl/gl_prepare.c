@@ -339,6 +339,8 @@ void sc_prepare_defaults(sc_renderer *r)
         r->desc.order = SC_RENDER_DEFAULT_ORDER;
     if (r->desc.batch_hulls <= 0)
         r->desc.batch_hulls = SC_RENDER_DEFAULT_BATCH_HULLS;
+    if (!r->desc.list_below_px)
+        r->desc.list_below_px = SC_RENDER_DEFAULT_LIST_BELOW_PX;
 }
 
 int sc_renderer_create(const sc_gl *gl, const sc_scene *scene, const sc_render_desc *desc,

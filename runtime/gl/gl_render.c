@@ -539,7 +539,10 @@ int sc_render_hulls(sc_renderer *r, const double eye_world[3], const double fwd[
         listing = r->desc.ert == SC_TERMINATION_LISTS                       ? 2
                   : manual_ert(r->desc.ert) && r->desc.list_below_px > 0 ? 1
                                                                           : 0;
-    r->nlisted = 0;
+    if (listing)
+        sc_lists_begin(r);
+    else
+        r->nlisted = 0;
     for (int k = 0; k < h->count; k++) {
         double d = box_distance(h->subpatches[k].lo, h->subpatches[k].hi, eye_world);
         if (d == 0 && sc_hull_contains(h, k, eye_world))

@@ -44,7 +44,8 @@ typedef struct sc_render_desc {
                                (SC_RENDER_DEFAULT_BATCH_HULLS) */
     int list_below_px;      /* manual modes: hulls at most this many pixels
                                wide and high on screen go through candidate
-                               lists; 0: none */
+                               lists; 0: SC_RENDER_DEFAULT_LIST_BELOW_PX,
+                               SC_LISTS_OFF: none */
     sc_program_cache *programs; /* the cache to take programs from, shared
                                with whoever else uses it and outliving the
                                renderer; NULL: a cache of the renderer's own */

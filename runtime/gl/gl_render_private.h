@@ -102,23 +102,29 @@ typedef struct group {
     /* The same keys as ert5 (start mid), for hulls drawn through candidate
      * lists (gl_lists.c); compiled when a frame first lists one. */
     sc_program lists, aov_lists;
+    int listable;   /* this frame: its list program can be had (a gen
+                       folder may lack it; then its hulls stay hulls) */
 } group;
 
 /* A hull of the frame drawn through candidate lists (gl_lists.c): its
- * group, the distance from the eye to its box, and the pixels
- * [rect[0], rect[2]) × [rect[1], rect[3]) whose lists hold it. */
+ * group, the distance from the eye to its box, and the pixels whose lists
+ * hold it, as spans of the rows of a rectangle. */
 typedef struct list_hull {
     int hull, group;
-    double distance;
-    int rect[4];
+    float distance;   /* from the eye to its box, rounded down */
+    int rect[4];      /* pixels [x0, x1) × [y0, y1) around it */
+    size_t spans_first; /* per row of rect, [from, to) of its pixels, in
+                           renderer.list_spans */
 } list_hull;
 
-/* One rectangle drawn with a group's list program: its pixels' lists
- * start at entry first_head of the heads. */
+/* One draw of a group's list program: the lists of the pixels of rect
+ * (whole tiles) start at entry first_head of the heads, its tiles at
+ * first_tile. */
 typedef struct list_draw {
     int group;
     int rect[4];
     int first_head;
+    int first_tile;   /* its first tile in renderer.list_tiles */
 } list_draw;
 
 /* One draw call of a frame. */
@@ -247,16 +253,23 @@ struct sc_renderer {
     int peel_fallback;       /* the last frame fell back (gl_render.c) */
     /* Candidate lists (gl_lists.c): the frame's listed hulls, per slot
      * their domain, record and box distance, the heads and entries of the
-     * pixels' lists, the rectangles drawn; their buffers and textures
-     * (heads, entries, slots) and an empty vertex array for the
-     * rectangles. */
-    list_hull *listed;
-    int nlisted, listed_cap;
+     * pixels' lists, the draws and their tiles; their buffers and
+     * textures (heads, entries, slots, tiles) and an empty vertex array
+     * for the tiles' points; the listed hulls' pixel spans, room for one
+     * hull's projected vertices, and the sort's spare array and counts. */
+    list_hull *listed, *listed_spare;
+    int nlisted;
+    size_t listed_cap;
+    int *list_spans;
+    double *list_projected;
+    size_t *list_counts;
+    size_t list_spans_len, list_spans_cap, list_projected_cap, listed_spare_cap, list_counts_cap;
     float *list_slots;
     uint32_t *list_heads, *list_items;
     list_draw *list_draws;
-    size_t list_slots_cap, list_heads_cap, list_items_cap, list_draws_cap;
-    GLuint list_buffers[3], list_textures[3], list_vertex_array;
+    uint32_t *list_tiles;
+    size_t list_slots_cap, list_heads_cap, list_items_cap, list_draws_cap, list_tiles_cap;
+    GLuint list_buffers[4], list_textures[4], list_vertex_array;
     long long list_entries;  /* of the last frame: entries of all lists */
 };
 
@@ -328,16 +341,19 @@ int sc_peel_draw(sc_renderer *r, int n, const float vp[16], const float raster_e
 void sc_peel_finish(sc_renderer *r);
 void sc_peel_destroy(sc_renderer *r);
 
-/* Candidate lists (gl_lists.c). Adds hull k (not holding the eye; box at
- * `distance` from the eye) to the frame's listed hulls when its vertices
+/* Candidate lists (gl_lists.c). Starts a frame's lists: none yet, and
+ * which groups' list programs the program cache offers. */
+void sc_lists_begin(sc_renderer *r);
+/* Adds hull k (not holding the eye; box at `distance` from the eye) to
+ * the frame's listed hulls when its group is listable, its vertices
  * project inside the near and far planes and, unless every_size, into a
  * rectangle at most desc.list_below_px wide and high on the renderer's
  * target; 1 when it did. */
 int sc_lists_take(sc_renderer *r, int k, double distance, const float vp[16],
                   const double eye[3], int every_size);
-/* Builds the listed hulls' per-pixel lists, sends them and draws one
- * rectangle per group with its ert5 program, into the renderer's own
- * target, bound, under the depth test. */
+/* Builds the listed hulls' per-pixel lists, sends them and draws the
+ * tiles that hold them with each group's ert5 program, into the
+ * renderer's own target, bound, under the depth test. */
 int sc_lists_draw(sc_renderer *r, const float vp[16], const float eye[3], const float eye_low[3],
                   float footprint, GLuint *current, sc_error *err);
 void sc_lists_destroy(sc_renderer *r);

@@ -187,6 +187,15 @@ static int add_entry(sc_program_cache *cache, const scg_key *key, const char *te
     return SC_OK;
 }
 
+int sc_program_cache_offers(const sc_program_cache *cache, const scg_key *key)
+{
+    if (!cache->dir || cache->generate_missing)
+        return 1;
+    char text[SCG_KEY_MAX];
+    scg_key_format(key, text, sizeof text);
+    return find(cache, text) != 0 || sc_programs_dir_has(cache->dir, text);
+}
+
 int sc_program_for_key(sc_program_cache *cache, const scg_key *key, sc_program *out,
                        sc_error *err)
 {

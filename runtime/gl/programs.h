@@ -28,6 +28,11 @@ void sc_program_cache_destroy(sc_program_cache *cache);
 int sc_program_cache_set_sources(sc_program_cache *cache, const char *glsl_dir,
                                  int generate_missing, const char *binary_dir, sc_error *err);
 
+/* Whether sc_program_for_key can give the program of `key` without
+ * failing for want of it: a gen folder without generate_missing gives only
+ * the keys of its manifest. */
+int sc_program_cache_offers(const sc_program_cache *cache, const scg_key *key);
+
 /* The program of `key`: from the cache, or generated, validated, compiled
  * and linked now. A failure names the key (err->key) and, for a rejected
  * program, the compiler's message and the GLSL line it points at. */

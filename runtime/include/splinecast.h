@@ -486,13 +486,12 @@ typedef struct sc_renderer_desc {
                                   doubling batches, and per hybrid bucket
                                   (32) */
     int list_below_px;         /* in the manual termination modes, hulls
-                                  whose screen rectangle is at most this
-                                  many pixels wide and high are drawn
-                                  through candidate lists per pixel (ert5
-                                  programs) instead of as hulls; 0: none
-                                  (the default: docs/speed.md, "Candidate
-                                  lists", says where the lists lose
-                                  accuracy) */
+                                  whose projection is at most this many
+                                  pixels wide and high are drawn through
+                                  candidate lists per pixel (ert5
+                                  programs) instead of as hulls (8;
+                                  SC_LISTS_OFF: none; docs/speed.md,
+                                  "Candidate lists") */
     size_t gpu_memory_budget;  /* most bytes of GPU data (patch data, hulls,
                                   colours: sc_renderer_info.gpu_bytes) the
                                   renderer may upload; a scene that needs
