@@ -25,6 +25,12 @@ static const char *const output_names[] = {"shade", "aov", "iters", "uv", "hull"
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
+void scg_key_for_lists(scg_key *key)
+{
+    key->ert = SCG_ERT_LISTS;
+    key->start = SC_START_MID;
+}
+
 void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v)
 {
     memset(key, 0, sizeof *key);

@@ -152,6 +152,11 @@ typedef struct scg_key {
  * output. */
 void scg_key_default(scg_key *key, scg_patch_kind kind, int deg_u, int deg_v);
 
+/* The key candidate lists draw a hull of this key with (ert5; the program
+ * starts each candidate on its sub-patch's control net, whatever the key's
+ * start): the renderer's and `gen --scene`'s one rule. */
+void scg_key_for_lists(scg_key *key);
+
 /* Canonical text into buf (SCG_KEY_MAX bytes are always enough). */
 const char *scg_key_format(const scg_key *key, char *buf, size_t size);
 

@@ -475,7 +475,8 @@ int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err)
     if (sc_api_check_int(desc->deg_u, 0, SCG_MAX_DEGREE, "sc_key_desc.deg_u", err) ||
         sc_api_check_int(desc->deg_v, 0, SCG_MAX_DEGREE, "sc_key_desc.deg_v", err) ||
         sc_api_check_int(desc->rational, 0, 2, "sc_key_desc.rational", err) ||
-        sc_api_check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_key_desc.max_iters", err))
+        sc_api_check_int(desc->max_iters, 0, SCG_MAX_ITERS, "sc_key_desc.max_iters", err) ||
+        sc_api_check_int(desc->lists, 0, 1, "sc_key_desc.lists", err))
         return SC_FAIL;
     scg_key key;
     if (desc->like) {
@@ -505,6 +506,8 @@ int sc_make_key(const sc_key_desc *desc, sc_key *out, sc_error *err)
         key.rational = desc->rational == 1;
     if (desc->max_iters)
         key.max_iters = desc->max_iters;
+    if (desc->lists)
+        scg_key_for_lists(&key);
     /* Only now: like may be out's own text. */
     memset(out, 0, sizeof *out);
     scg_key_format(&key, out->text, sizeof out->text);

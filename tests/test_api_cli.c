@@ -390,6 +390,13 @@ TEST(api_cli_keys_made_and_per_surface)
     CHECK_STR(err.key, "bez3x3");
     CHECK_INT(sc_make_key(&(sc_key_desc){.deg_u = 17}, &key, &err), SC_FAIL);
     CHECK_CONTAINS(err.message, "sc_key_desc.deg_u is out of range: 17");
+    /* The program candidate lists draw a key's hulls with: ert5, each
+     * candidate started on its control net (mid), the rest as it is. */
+    const char *drawn = "bez3x3-poly-pow-trim0-hybrid-cp-it6-tol0.05-ert1-out.shade";
+    CHECK_INT(sc_make_key(&(sc_key_desc){.like = drawn, .lists = 1}, &key, &err), SC_OK);
+    CHECK_STR(key.text, "bez3x3-poly-pow-trim0-hybrid-mid-it6-tol0.05-ert5-out.shade");
+    CHECK_INT(sc_make_key(&(sc_key_desc){.like = drawn, .lists = 2}, &key, &err), SC_FAIL);
+    CHECK_CONTAINS(err.message, "sc_key_desc.lists is out of range: 2");
 
     /* Per surface, with like's options: as sc_query_scene_keys with the
      * same desc, ertN taken as it is. */

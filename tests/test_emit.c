@@ -469,12 +469,19 @@ TEST(emit_gen_scene_keys)
     snprintf(cmd, sizeof cmd, "%s gen --scene teapot --iters 1,4 -o %s/gen/teapot", test_cli,
              test_tmpdir());
     CHECK_INT(test_run(cmd, &out, NULL), 0);
-    /* The teapot is 32 bicubic polynomial patches: one key per count, and
-     * each without the AOVs (what a renderer draws with). */
+    /* The teapot is 32 bicubic polynomial patches: one key per count, each
+     * without the AOVs (what a renderer draws with), and both as the
+     * renderer's candidate lists draw them (ert5, started on the control
+     * net: start mid). */
     CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.aov.frag");
     CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.aov.frag");
     CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it1-tol0.05-ert1-out.shade.frag");
     CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-cp-it4-tol0.05-ert1-out.shade.frag");
-    CHECK_CONTAINS(out, "keys 4 files 6\n");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-mid-it1-tol0.05-ert5-out.shade.aov.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-mid-it4-tol0.05-ert5-out.shade.aov.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-mid-it1-tol0.05-ert5-out.shade.frag");
+    CHECK_CONTAINS(out, "bez3x3-poly-pow-trim0-hybrid-mid-it4-tol0.05-ert5-out.shade.frag");
+    CHECK_CONTAINS(out, "list-tiles.vert");
+    CHECK_CONTAINS(out, "keys 8 files 11\n");
     free(out);
 }

@@ -19,6 +19,7 @@
 /* Counts the library's program messages by kind. */
 typedef struct program_log {
     int generated, read, from_binary;
+    int lists_read;            /* read programs of candidate lists (ert5) */
 } program_log;
 
 static void count_programs(sc_log_level level, const char *message, void *user)
@@ -27,6 +28,7 @@ static void count_programs(sc_log_level level, const char *message, void *user)
     program_log *log = user;
     log->generated += strstr(message, ": generated in ") != NULL;
     log->read += strstr(message, ": read in ") != NULL;
+    log->lists_read += strstr(message, ": read in ") && strstr(message, "-ert5-");
     log->from_binary += strstr(message, ": loaded from the binary cache") != NULL;
 }
 
@@ -194,9 +196,27 @@ TEST(pack_damaged_files_refused)
     sc_shutdown();
 }
 
-/* Programs from a gen folder: read, not generated; a key the manifest
- * lacks, and a file changed since, fail naming the key; generate_missing
- * generates what is missing. */
+/* The pixels of a 128 x 128 frame of the teapot that hit it. */
+static long frame_hits(sc_renderer_id r)
+{
+    sc_error err = {0};
+    sc_frame_id frame;
+    sc_frame_info info;
+    if (sc_render(r, &(sc_camera_desc){.width = 128, .height = 128}, &frame, &err) != SC_OK ||
+        sc_query_frame_info(frame, &info, &err) != SC_OK) {
+        fprintf(stderr, "  frame: %s\n", err.message);
+        return -1;
+    }
+    long hits = 0;
+    for (int p = 0; p < 128 * 128; p++)
+        hits += info.surface[p] >= 0;
+    return hits;
+}
+
+/* Programs from a gen folder: read, not generated, those of candidate
+ * lists included; a folder without them draws those hulls as hulls; a key
+ * the manifest lacks, and a file changed since, fail naming the key;
+ * generate_missing generates what is missing. */
 TEST(pack_programs_from_gen_folder)
 {
     char dir[1024], args[2048];
@@ -220,18 +240,34 @@ TEST(pack_programs_from_gen_folder)
     CHECK_INT(sc_make_renderer(ctx, scene, NULL, &r, &err), SC_OK);
     CHECK_INT(log.generated, 0);
     CHECK_INT(log.read, 1);
-    /* A frame whose small hulls the default would list: the folder holds
-     * no list program (gen --scene writes the scene's keys), so they are
-     * drawn as hulls, with what the folder has. */
-    sc_frame_id frame;
-    CHECK_INT(sc_render(r, &(sc_camera_desc){.width = 128, .height = 128}, &frame, &err), SC_OK);
-    CHECK_INT(log.generated, 0);
-    sc_frame_info info;
-    CHECK_INT(sc_query_frame_info(frame, &info, &err), SC_OK);
-    long hits = 0;
-    for (int p = 0; p < 128 * 128; p++)
-        hits += info.surface[p] >= 0;
+    /* A frame whose small hulls the default lists: gen --scene wrote their
+     * list programs too. */
+    long hits = frame_hits(r);
     CHECK(hits > 128 * 128 / 20);
+    CHECK_INT(log.generated, 0);
+    CHECK(log.lists_read > 0);
+    /* A folder of the scene's keys alone: those hulls are drawn as hulls,
+     * with what the folder has, and cover the same pixels. */
+    sc_key keys[2];
+    int n = 0;
+    CHECK_INT(sc_query_scene_keys(scene, NULL, &keys[0], 1, &n, &err), SC_OK);
+    CHECK_INT(sc_query_scene_keys(scene, &(sc_keys_desc){.outputs = SC_OUTPUT_SHADE}, &keys[1], 1,
+                                  &n, &err),
+              SC_OK);
+    char keys_dir[1024];
+    tmp_path(keys_dir, sizeof keys_dir, "gen-teapot-keys");
+    snprintf(args, sizeof args, "gen --key %s %s -o '%s'", keys[0].text, keys[1].text, keys_dir);
+    CHECK_INT(run_cli(args, NULL, NULL), 0);
+    sc_context_id keys_ctx;
+    CHECK_INT(sc_make_context(&(sc_context_desc){.programs_dir = keys_dir}, &keys_ctx, &err),
+              SC_OK);
+    sc_renderer_id keys_r;
+    CHECK_INT(sc_make_renderer(keys_ctx, scene, NULL, &keys_r, &err), SC_OK);
+    int lists_read = log.lists_read;
+    CHECK_INT(frame_hits(keys_r), hits);
+    CHECK_INT(log.generated, 0);
+    CHECK_INT(log.lists_read, lists_read);
+    sc_destroy_context(keys_ctx);
     /* Another key: not in the folder. */
     sc_renderer_id other;
     CHECK_INT(sc_make_renderer(ctx, scene, &(sc_renderer_desc){.max_iters = 3}, &other, &err),
@@ -250,20 +286,15 @@ TEST(pack_programs_from_gen_folder)
     sc_destroy_context(ctx);
     /* A fragment program changed after gen wrote it: the one a renderer
      * draws with, which writes no AOVs. */
-    sc_key key;
-    int n = 0;
-    CHECK_INT(sc_query_scene_keys(scene, &(sc_keys_desc){.outputs = SC_OUTPUT_SHADE}, &key, 1, &n,
-                                  &err),
-              SC_OK);
     char path[1400];
-    snprintf(path, sizeof path, "%s/%s.frag", dir, key.text);
+    snprintf(path, sizeof path, "%s/%s.frag", dir, keys[1].text);
     FILE *f = fopen(path, "a");
     CHECK(f != NULL);
     fputs("// edited\n", f);
     fclose(f);
     CHECK_INT(sc_make_context(&(sc_context_desc){.programs_dir = dir}, &ctx, &err), SC_OK);
     CHECK_INT(sc_make_renderer(ctx, scene, NULL, &r, &err), SC_FAIL);
-    CHECK_STR(err.key, key.text);
+    CHECK_STR(err.key, keys[1].text);
     CHECK_CONTAINS(err.message, "where the manifest says");
     sc_destroy_context(ctx);
     /* A folder without a manifest. */

@@ -34,9 +34,11 @@ const char gen_keys_usage[] =
     "KEYS, exactly one of:\n"
     "  --key KEY...       variant keys in canonical form (docs/variant-key.md)\n"
     "  --scene SCENE      the keys SCENE's surfaces need (one per degree pair,\n"
-    "                     rationality and trimming; a key whose outputs are\n"
-    "                     shade.aov also without aov: a renderer draws with\n"
-    "                     that one and reads frames back with the other)\n"
+    "                     rationality and trimming; for gen, a key whose\n"
+    "                     outputs are shade.aov also without aov, since a\n"
+    "                     renderer draws with that one and reads frames back\n"
+    "                     with the other, and each of these also as the\n"
+    "                     renderer's candidate lists draw it, ert5)\n"
     "  --family LO..HI    bez keys of every degree pair LO..HI x LO..HI, rational\n"
     "                     and not\n"
     "with --scene and --family:\n"
@@ -92,9 +94,10 @@ static int parse_iters(const char *text, int *iters, int max)
 
 /* The keys the scene's surfaces need, each at every iteration count, with
  * what --like gives (the scene decides kind, degrees, rationality, the
- * generic program where a degree needs it, and whether it is trimmed). Returns 0, or 1 after printing why the
- * scene could not be read or drawn (`render` refuses a surface no program
- * draws). */
+ * generic program where a degree needs it, and whether it is trimmed); for
+ * gen (drawing_keys) also every key a renderer draws them with. Returns 0,
+ * or 1 after printing why the scene could not be read or drawn (`render`
+ * refuses a surface no program draws). */
 static int add_scene_keys(const char *path, const char *like, const int *iters, int niters,
                           int drawing_keys, gen_keys *set)
 {
@@ -106,20 +109,32 @@ static int add_scene_keys(const char *path, const char *like, const int *iters, 
     int status = sc_query_scene_info(scene, &info, &err);
     for (int s = 0; s < info.surfaces && status == SC_OK; s++)
         for (int k = 0; k < niters && status == SC_OK; k++) {
-            sc_key key;
+            sc_key key[2];
+            int nkeys = 0;
             sc_keys_desc desc = {.like = like, .max_iters = iters[k]};
-            status = sc_query_surface_key(scene, s, &desc, &key, &err);
-            if (status == SC_OK)
-                add_key(set, &key);
+            status = sc_query_surface_key(scene, s, &desc, &key[nkeys], &err);
+            nkeys += status == SC_OK;
             /* For gen: a renderer's frames write the AOVs on demand only
              * (sc_renderer_desc.aovs), so it draws with the key without
              * them; audit measures the scene keys alone. */
-            size_t n = status == SC_OK ? strlen(key.text) : 0;
-            if (drawing_keys && n > 14 && !strcmp(key.text + n - 14, "-out.shade.aov")) {
+            size_t n = status == SC_OK ? strlen(key[0].text) : 0;
+            if (drawing_keys && n > 14 && !strcmp(key[0].text + n - 14, "-out.shade.aov")) {
                 desc.outputs = SC_OUTPUT_SHADE;
-                status = sc_query_surface_key(scene, s, &desc, &key, &err);
-                if (status == SC_OK)
-                    add_key(set, &key);
+                status = sc_query_surface_key(scene, s, &desc, &key[nkeys], &err);
+                nkeys += status == SC_OK;
+            }
+            for (int i = 0; i < nkeys && status == SC_OK; i++) {
+                add_key(set, &key[i]);
+                /* Small hulls go through candidate lists by default, with
+                 * programs of their own; a folder without them draws those
+                 * hulls as hulls. */
+                sc_key listed;
+                if (drawing_keys) {
+                    status = sc_make_key(&(sc_key_desc){.like = key[i].text, .lists = 1}, &listed,
+                                         &err);
+                    if (status == SC_OK)
+                        add_key(set, &listed);
+                }
             }
         }
     sc_destroy_scene(scene);

@@ -228,15 +228,13 @@ static void sort_listed(sc_renderer *r)
     r->listed_cap = cap;
 }
 
-/* The key of group g's list program: its key as ert5 (whose start is
- * `mid` in the key; the program starts each candidate on the sub-patch's
- * control net, gen/intersect.c), with the AOVs when the frame writes them. */
+/* The key of group g's list program: its key as candidate lists draw it
+ * (scg_key_for_lists), with the AOVs when the frame writes them. */
 static scg_key list_key(const sc_renderer *r, int g, int aov)
 {
     const group *gr = &r->groups[g];
     scg_key key = *sc_program_key(r->programs, aov ? gr->aov : gr->program);
-    key.ert = SCG_ERT_LISTS;
-    key.start = SC_START_MID;
+    scg_key_for_lists(&key);
     return key;
 }
 

@@ -303,6 +303,11 @@ typedef struct sc_key_desc {
                                   keys (loop) become unrolled ones (dc) */
     int rational;              /* 1: rational, 2: polynomial */
     int max_iters;             /* 1 … SC_MAX_ITERS */
+    int lists;                 /* 1: the key a renderer's candidate lists
+                                  draw like's hulls with (ert5, each
+                                  candidate started on its control net;
+                                  sc_renderer_desc.list_below_px), which a
+                                  programs_dir must hold for them */
 } sc_key_desc;
 
 /* Parses like (sc_check_key says whether the result can be built), changes
