@@ -662,6 +662,27 @@ TEST(limits_png_header)
  * farther than the limit now ends the loop's refinement, since the loop is
  * refused either way. Its copy in the IGES fuzz corpus keeps fuzz-smoke's
  * 10 s timeout as the guard against the old cost. */
+/* A fuzzed mutant of the case below: its curves lie off the surface by
+ * more than the tolerance and less than the limit along most of the loop,
+ * so every sample searched the whole domain (docs/limits.md). The loop is
+ * still refused; its cost is guarded by fuzz-smoke's timeout on the corpus,
+ * which holds it too. */
+TEST(limits_hostile_iges_loop_near_its_surface)
+{
+    sc_scene scene;
+    sc_error err;
+    CHECK_INT(sc_read_scene(test_root("tests/malformed/iges_off_surface_loop_slow.igs"), &scene,
+                            &err),
+              SC_OK);
+    CHECK_INT(scene.nsurfaces, 1);
+    CHECK_INT(scene.surfaces[0].nloops, 0);
+    int off = 0;
+    for (int i = 0; i < scene.nskipped; i++)
+        off += !strcmp(scene.skipped[i].reason, "off-surface") ? scene.skipped[i].count : 0;
+    CHECK_INT(off, 1);
+    sc_scene_free(&scene);
+}
+
 TEST(limits_hostile_iges_off_surface_loop)
 {
     sc_scene scene;
