@@ -532,7 +532,7 @@ int sc_project_loop(const sc_surface *s, const sc_curve *curves, int n, double t
         prev[0] = l.s[l.n - 1].uv[0];
         prev[1] = l.s[l.n - 1].uv[1];
         free(l.s);
-        if (status == SC_OK && (pj.dev > off_limit || pj.off))
+        if (status == SC_OK && pj.off)
             status = SC_PROJECT_OFF;
     }
     if (status == SC_OK && n > 0 && hypot(first[0] - prev[0], first[1] - prev[1]) > 1e-7 * size)
