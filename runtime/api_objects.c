@@ -261,12 +261,20 @@ void sc_api_destroy_renderer_object(renderer_object *r)
 int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
                        sc_error *err)
 {
+    double lo[3], hi[3];
+    int any = scene && sc_scene_view_bounds(scene, lo, hi);
+    return sc_api_make_camera_framing(desc, any ? lo : NULL, any ? hi : NULL, cam, err);
+}
+
+int sc_api_make_camera_framing(const sc_camera_desc *desc, const double lo[3], const double hi[3],
+                               sc_camera *cam, sc_error *err)
+{
     static const sc_camera_desc defaults = {0};
     if (!desc)
         desc = &defaults;
     memset(cam, 0, sizeof *cam);
     memcpy(cam->up, desc->up, sizeof cam->up);
-    sc_camera_default_from(scene, desc->from, cam);
+    sc_camera_default_box(lo, hi, desc->from, cam);
     if (desc->text) {
         if (sc_camera_parse(desc->text, cam, err) != SC_OK)
             return SC_FAIL;

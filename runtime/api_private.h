@@ -136,6 +136,9 @@ void sc_api_release_scene(scene_object *s);
  * from the scene (api_objects.c). */
 int sc_api_make_camera(const sc_camera_desc *desc, const sc_scene *scene, sc_camera *cam,
                        sc_error *err);
+/* The same, defaults framing the box [lo, hi] (NULL: the unit cube). */
+int sc_api_make_camera_framing(const sc_camera_desc *desc, const double lo[3], const double hi[3],
+                               sc_camera *cam, sc_error *err);
 /* Destroys the peers made on context c (NULL: all of them) (api_peer.c). */
 void sc_api_destroy_peers(const context_object *c);
 /* Copies n key texts into keys (at most capacity) and sets *count. */

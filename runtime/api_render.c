@@ -278,7 +278,7 @@ int sc_query_renderer_info(sc_renderer_id renderer, sc_renderer_info *info, sc_e
         .qhull_hulls = stats.qhull_hulls,
         .peel_layers = stats.peel_layers,
     };
-    if (!sc_scene_view_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi))
+    if (!sc_renderer_view_bounds(r->renderer, info->lo, info->hi))
         sc_scene_bounds(sc_renderer_scene(r->renderer), info->lo, info->hi);
     return SC_OK;
 }
@@ -314,8 +314,12 @@ static int add_frame(frame_object *f, sc_frame_id *out, sc_error *err)
 static int draw(sc_renderer_id renderer, const sc_camera_desc *camera, int aovs, sc_error *err)
 {
     renderer_object *r = sc_api_pool_get(&sc_api_renderers, renderer.id, err);
+    if (!r)
+        return SC_FAIL;
     sc_camera cam;
-    if (!r || sc_api_make_camera(camera, sc_renderer_scene(r->renderer), &cam, err) != SC_OK ||
+    double lo[3], hi[3];
+    int any = sc_renderer_view_bounds(r->renderer, lo, hi);
+    if (sc_api_make_camera_framing(camera, any ? lo : NULL, any ? hi : NULL, &cam, err) != SC_OK ||
         sc_api_make_current(r->context, err) != SC_OK)
         return SC_FAIL;
     /* In an application's context the renderer's own target is drawn, and

@@ -248,3 +248,14 @@ fail:
 }
 
 const sc_scene *sc_renderer_scene(const sc_renderer *r) { return r->scene; }
+
+int sc_renderer_view_bounds(sc_renderer *r, double lo[3], double hi[3])
+{
+    if (!r->view_known) {
+        r->view_any = sc_scene_view_bounds(r->scene, r->view_lo, r->view_hi);
+        r->view_known = 1;
+    }
+    memcpy(lo, r->view_lo, sizeof r->view_lo);
+    memcpy(hi, r->view_hi, sizeof r->view_hi);
+    return r->view_any;
+}

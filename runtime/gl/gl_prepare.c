@@ -517,6 +517,7 @@ int sc_renderer_update_surface(sc_renderer *r, int surface, sc_error *err)
         key.outputs &= ~SCG_OUTPUT_AOV;
     if (!scg_key_equal(&key, &r->keys[surface]))
         return sc_fail(err, NULL, 0, "surface %d changed its key; make a new renderer", surface);
+    r->view_known = 0;
     sc_patch_list old = r->patches[surface];
     sc_surface_world_patches(&r->scene->surfaces[surface], surface, &r->patches[surface]);
     int hulls_moved, records_moved;

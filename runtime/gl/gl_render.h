@@ -171,6 +171,9 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats);
 /* The scene the renderer draws: a packed renderer's stand-in (gl_pack.h),
  * whose surfaces have their colours and the scene's box alone. */
 const sc_scene *sc_renderer_scene(const sc_renderer *r);
+/* sc_scene_view_bounds of that scene, found once and again after a surface
+ * changed (sc_renderer_update_surface); 0 for an empty scene. */
+int sc_renderer_view_bounds(sc_renderer *r, double lo[3], double hi[3]);
 /* The key surface s is drawn with. */
 const scg_key *sc_renderer_surface_key(const sc_renderer *r, int surface);
 /* What the accuracy target chose for surface s; NULL without a target. */

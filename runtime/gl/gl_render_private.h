@@ -148,6 +148,11 @@ typedef struct sort_item {
 struct sc_renderer {
     const sc_gl *gl;
     const sc_scene *scene;
+    /* The scene's view bounds (sc_renderer_view_bounds), kept until a
+     * surface changes: framing a scene of 100,000 patches by default took
+     * 19 ms a frame to find them again. */
+    int view_known, view_any;
+    double view_lo[3], view_hi[3];
     sc_render_desc desc;
     scg_key *keys;           /* per surface */
     scg_patch_kind *kinds;   /* per surface */

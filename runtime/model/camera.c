@@ -131,6 +131,14 @@ void sc_camera_default(const sc_scene *scene, sc_camera *cam)
 void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_camera *cam)
 {
     double lo[3], hi[3];
+    int any = scene && sc_scene_view_bounds(scene, lo, hi);
+    sc_camera_default_box(any ? lo : NULL, any ? hi : NULL, from, cam);
+}
+
+void sc_camera_default_box(const double box_lo[3], const double box_hi[3], const double from[3],
+                           sc_camera *cam)
+{
+    double lo[3] = {-1.0, -1.0, -1.0}, hi[3] = {1.0, 1.0, 1.0};
     double dir[3];
     if (from && (from[0] != 0 || from[1] != 0 || from[2] != 0))
         memcpy(dir, from, sizeof dir);
@@ -138,12 +146,10 @@ void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_came
         default_direction_for(cam, dir);
     normalize3(dir);
     cam->fovy_deg = default_fovy_deg;
-    if (!scene || !sc_scene_view_bounds(scene, lo, hi)) {
-        /* Nothing to frame: look at the unit cube around the origin. */
-        for (int k = 0; k < 3; k++) {
-            lo[k] = -1.0;
-            hi[k] = 1.0;
-        }
+    /* Nothing to frame: the unit cube around the origin. */
+    if (box_lo && box_hi) {
+        memcpy(lo, box_lo, sizeof lo);
+        memcpy(hi, box_hi, sizeof hi);
     }
     double radius = 0.0;
     for (int k = 0; k < 3; k++) {

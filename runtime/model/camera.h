@@ -30,6 +30,10 @@ void sc_camera_default(const sc_scene *scene, sc_camera *cam);
  * from direction `from` (towards the eye from the target, any length; NULL
  * or zero: the 3/4 view). */
 void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_camera *cam);
+/* The same framing of the box [lo, hi] (sc_scene_view_bounds; NULL: the
+ * unit cube around the origin, as for an empty scene). */
+void sc_camera_default_box(const double lo[3], const double hi[3], const double from[3],
+                           sc_camera *cam);
 
 /* The box the default view frames (view_bounds.c): control points of
  * untrimmed surfaces, the kept region of trimmed ones. 0 for an empty
