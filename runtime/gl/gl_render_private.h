@@ -150,7 +150,7 @@ struct sc_renderer {
     const sc_scene *scene;
     /* The scene's view bounds (sc_renderer_view_bounds), kept until a
      * surface changes: framing a scene of 100,000 patches by default took
-     * 19 ms a frame to find them again. */
+     * about 20 ms a frame to find them again. */
     int view_known, view_any;
     double view_lo[3], view_hi[3];
     sc_render_desc desc;

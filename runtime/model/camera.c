@@ -125,14 +125,9 @@ static void default_direction_for(const sc_camera *cam, double dir[3])
 void sc_camera_default(const sc_scene *scene, sc_camera *cam)
 {
     memset(cam->up, 0, sizeof cam->up);
-    sc_camera_default_from(scene, NULL, cam);
-}
-
-void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_camera *cam)
-{
     double lo[3], hi[3];
     int any = scene && sc_scene_view_bounds(scene, lo, hi);
-    sc_camera_default_box(any ? lo : NULL, any ? hi : NULL, from, cam);
+    sc_camera_default_box(any ? lo : NULL, any ? hi : NULL, NULL, cam);
 }
 
 void sc_camera_default_box(const double box_lo[3], const double box_hi[3], const double from[3],

@@ -26,12 +26,10 @@ void sc_camera_format(const sc_camera *cam, char *buf, size_t size);
 /* A view that frames the scene's bounding box (size untouched, up the
  * default): a 3/4 view from the front left, somewhat above. */
 void sc_camera_default(const sc_scene *scene, sc_camera *cam);
-/* The same framing for cam->up (set it first: "above" is along it), seen
- * from direction `from` (towards the eye from the target, any length; NULL
- * or zero: the 3/4 view). */
-void sc_camera_default_from(const sc_scene *scene, const double from[3], sc_camera *cam);
 /* The same framing of the box [lo, hi] (sc_scene_view_bounds; NULL: the
- * unit cube around the origin, as for an empty scene). */
+ * unit cube around the origin, as for an empty scene) for cam->up (set it
+ * first: "above" is along it), seen from direction `from` (towards the eye
+ * from the target, any length; NULL or zero: the 3/4 view). */
 void sc_camera_default_box(const double lo[3], const double hi[3], const double from[3],
                            sc_camera *cam);
 
