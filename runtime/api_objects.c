@@ -212,6 +212,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
         sc_api_check_int(d->trim_iters, 0, SCG_MAX_TRIM_ITERS, "sc_renderer_desc.trim_iters", err) ||
         sc_api_check_int(d->batch_hulls, 0, 1 << 24, "sc_renderer_desc.batch_hulls", err) ||
         sc_api_check_int(d->list_below_px, SC_LISTS_OFF, 1 << 16, "sc_renderer_desc.list_below_px", err) ||
+        sc_api_check_int(d->threads, 0, 1 << 10, "sc_renderer_desc.threads", err) ||
         sc_api_check_enum(d->method, SC_METHOD_HYBRID + 1, "sc_renderer_desc.method", err) ||
         sc_api_check_enum(d->eval, SC_EVAL_POW + 1, "sc_renderer_desc.eval", err) ||
         sc_api_check_tolerance(d->tolerance_px, "sc_renderer_desc.tolerance_px", &r->tol_milli, err))
@@ -235,6 +236,7 @@ int sc_api_render_desc(const sc_renderer_desc *d, sc_render_desc *r, sc_error *e
     r->order = d->order;
     r->batch_hulls = d->batch_hulls;
     r->list_below_px = d->list_below_px;
+    r->threads = d->threads;
     r->gpu_memory_budget = d->gpu_memory_budget;
     r->method = d->method;
     r->eval = d->eval;

@@ -156,6 +156,72 @@ TEST(scale_grid_renders)
     check_accurate(&acc, "grid through lists");
 }
 
+/* The grid's frame through r, with the AOVs; 1 when drawn and read. */
+static int draw_grid(sc_renderer *r, const sc_camera *cam, sc_aov *aov, sc_render_stats *stats,
+                     sc_error *err)
+{
+    int ok = sc_renderer_draw(r, cam, err) == SC_OK && sc_renderer_read(r, NULL, aov, err) == SC_OK;
+    sc_renderer_stats(r, stats);
+    return ok;
+}
+
+static int same_floats(const float *a, const float *b, size_t n)
+{
+    return (!a && !b) || (a && b && !memcmp(a, b, n * sizeof *a));
+}
+
+/* The pass over the hulls in shares on several threads (gl_render.c)
+ * leaves every array in hull order: the same pixels, the same
+ * intersections, whatever the thread count, on a frame where the lists
+ * take some hulls and the view leaves others out. */
+TEST(scale_threads_draw_the_same_frame)
+{
+    const char *dir = make_scenes(16, 12, 4);
+    CHECK(dir != NULL);
+    const char *why;
+    sc_gl_context *ctx = test_gl_context(SC_BACKEND_DEFAULT, &why);
+    if (!ctx)
+        SKIP("no GL context: %s", why);
+    static sc_error err;
+    sc_scene scene;
+    CHECK_INT(sc_read_scene(scene_path(dir, "teapot_grid.bpt"), &scene, &err), SC_OK);
+    /* A close view: part of the grid outside, the hulls near the eye
+     * drawn as hulls, the far ones listed. */
+    sc_camera cam;
+    sc_camera_default(&scene, &cam);
+    cam.width = cam.height = 160;
+    for (int c = 0; c < 3; c++)
+        cam.eye[c] = cam.target[c] + 0.35 * (cam.eye[c] - cam.target[c]);
+    sc_aov aovs[2];
+    sc_render_stats stats[2];
+    const int threads[2] = {1, 4};
+    for (int i = 0; i < 2; i++) {
+        sc_renderer *r;
+        sc_render_desc desc = {.threads = threads[i], .list_below_px = 4};
+        CHECK_INT(sc_renderer_create(sc_gl_context_gl(ctx), &scene, &desc, &r, &err), SC_OK);
+        CHECK(draw_grid(r, &cam, &aovs[i], &stats[i], &err));
+        sc_renderer_destroy(r);
+    }
+    CHECK_INT(stats[0].threads, 1);
+    CHECK_INT(stats[1].threads, 4);
+    CHECK(stats[0].intersections > 0);
+    CHECK(stats[0].draw_calls > 1);   /* hulls drawn as well as listed */
+    CHECK_INT(stats[1].intersections, stats[0].intersections);
+    CHECK_INT(stats[1].draw_calls, stats[0].draw_calls);
+    size_t px = (size_t)cam.width * cam.height;
+    long hits = 0;
+    for (size_t i = 0; i < px; i++)
+        hits += aovs[0].surface[i] >= 0;
+    CHECK(hits > (long)px / 10 && hits < (long)px);
+    CHECK(!memcmp(aovs[0].surface, aovs[1].surface, px * sizeof *aovs[0].surface));
+    CHECK(same_floats(aovs[0].t, aovs[1].t, px));
+    CHECK(same_floats(aovs[0].uv, aovs[1].uv, 2 * px));
+    CHECK(same_floats(aovs[0].normal, aovs[1].normal, 3 * px));
+    for (int i = 0; i < 2; i++)
+        sc_aov_free(&aovs[i]);
+    sc_scene_free(&scene);
+}
+
 /* One B-spline surface of 60 × 60 spans (3,600 Bézier patches, one
  * record and hull each) at 160 × 160. */
 TEST(scale_sheet_renders)

@@ -75,6 +75,8 @@ static const char usage[] =
     "  --lists-below off|PX   in the manual modes, hulls at most PX pixels wide\n"
     "                         and high on screen go through candidate lists\n"
     "                         (default 8)\n"
+    "  --threads N            CPU threads of each frame's pass over the hulls\n"
+    "                         (default: one per processor; at most 8 used)\n"
     "  --order LIST           draw order: all or a comma list of front-to-back,\n"
     "                         by-program, hybrid\n"
     "  --batch LIST           comma list of hulls per batch (manual early ray\n"
@@ -339,6 +341,9 @@ int cmd_bench(int argc, char **argv)
             peak = 1;
         } else if (!strcmp(a, "--update")) {
             update = 1;
+        } else if (!strcmp(a, "--threads") && next) {
+            if (cli_threads_parse(argv[++i], &desc.threads, &err) != SC_OK)
+                return cli_usage_error("bench", "%s", err.message);
         } else if (!strcmp(a, "--lists-below") && next) {
             if (cli_list_below_parse(argv[++i], &desc.list_below_px, &err) != SC_OK)
                 return cli_usage_error("bench", "%s", err.message);

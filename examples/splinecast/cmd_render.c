@@ -49,6 +49,8 @@ static const char usage[] =
     "                         and high on screen go through candidate lists\n"
     "                         per pixel instead of being drawn (default 8)\n"
     "  --order front-to-back|by-program|hybrid   draw order (default hybrid)\n"
+    "  --threads N            CPU threads of each frame's pass over the hulls\n"
+    "                         (default: one per processor; at most 8 used)\n"
     "  --batch N              hulls per batch, each seeing the hits of those\n"
     "                         before it (manual early ray termination), the\n"
     "                         first of peel's doubling batches, and per hybrid\n"
@@ -186,6 +188,9 @@ int cmd_render(int argc, char **argv)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--order") && next) {
             if (cli_order_parse(argv[++i], &desc.order, &err) != SC_OK)
+                return cli_usage_error("render", "%s", err.message);
+        } else if (!strcmp(a, "--threads") && next) {
+            if (cli_threads_parse(argv[++i], &desc.threads, &err) != SC_OK)
                 return cli_usage_error("render", "%s", err.message);
         } else if (!strcmp(a, "--batch") && next) {
             char *end;

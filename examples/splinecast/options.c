@@ -118,6 +118,16 @@ int cli_list_below_parse(const char *text, int *out, sc_error *err)
     return SC_OK;
 }
 
+int cli_threads_parse(const char *text, int *out, sc_error *err)
+{
+    char *end;
+    long n = strtol(text, &end, 10);
+    if (end == text || *end || n < 1 || n > 1024)
+        return fail(err, "--threads takes 1 to 1024 threads, not '%s'", text);
+    *out = (int)n;
+    return SC_OK;
+}
+
 const char *cli_termination_name(sc_ray_termination termination)
 {
     if (termination == SC_TERMINATION_DEFAULT)

@@ -21,6 +21,8 @@ int cli_termination_parse(const char *text, sc_ray_termination *out, sc_error *e
 /* `--lists-below off|PX` (sc_renderer_desc.list_below_px: off is
  * SC_LISTS_OFF). */
 int cli_list_below_parse(const char *text, int *out, sc_error *err);
+/* --threads N: 1 to 1024 (sc_renderer_desc.threads). */
+int cli_threads_parse(const char *text, int *out, sc_error *err);
 const char *cli_termination_name(sc_ray_termination termination);
 /* front-to-back, by-program, hybrid; and back. */
 int cli_order_parse(const char *text, sc_hull_order *out, sc_error *err);

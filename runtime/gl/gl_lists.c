@@ -120,18 +120,17 @@ static void outline_spans(const double *outline, int n, const int rect[4], int *
 }
 
 /* Hull k's vertices projected to the window (the first 2n doubles of
- * r->list_projected, which has room for their outline after them), the
+ * t->projected, which has room for their outline after them), the
  * largest side of their bounding rectangle, and in l->rect the pixels
  * [x0, x1) × [y0, y1) whose centres that rectangle holds; 0 when a vertex
  * lies outside the near or far plane or behind the eye. */
-static int project_hull(sc_renderer *r, int k, const float vp[16], const double eye[3],
-                        float *size, list_hull *l)
+static int project_hull(const sc_renderer *r, list_take *t, int k, const float vp[16],
+                        const double eye[3], float *size, list_hull *l)
 {
     const sc_subpatch *s = &r->hulls.subpatches[k];
     int width = r->target.width, height = r->target.height, n = s->vertex_count;
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    r->list_projected = grow(r->list_projected, &r->list_projected_cap, (size_t)4 * (n + 1),
-                             sizeof(double));
+    t->projected = grow(t->projected, &t->projected_cap, (size_t)4 * (n + 1), sizeof(double));
     for (int v = 0; v < n; v++) {
         const double *p = r->hulls.vertices[s->first_vertex + v].pos;
         double q[3] = {p[0] - eye[0], p[1] - eye[1], p[2] - eye[2]};
@@ -142,7 +141,7 @@ static int project_hull(sc_renderer *r, int k, const float vp[16], const double 
             return 0;
         for (int c = 0; c < 2; c++) {
             double window = (0.5 * clip[c] / clip[3] + 0.5) * (c ? height : width);
-            r->list_projected[2 * v + c] = window;
+            t->projected[2 * v + c] = window;
             lo[c] = window < lo[c] ? window : lo[c];
             hi[c] = window > hi[c] ? window : hi[c];
         }
@@ -158,13 +157,14 @@ static int project_hull(sc_renderer *r, int k, const float vp[16], const double 
     return 1;
 }
 
-int sc_lists_take(sc_renderer *r, int k, double distance, const float vp[16],
-                  const double eye[3], int every_size)
+int sc_lists_take(const sc_renderer *r, list_take *t, int k, double distance,
+                  const float vp[16], const double eye[3], int every_size)
 {
     float size;
     list_hull l = {.hull = k, .group = r->hull_group[k]};
     /* A box holding the eye: its distance orders nothing. */
-    if (!r->groups[l.group].listable || !(distance > 0) || !project_hull(r, k, vp, eye, &size, &l))
+    if (!r->groups[l.group].listable || !(distance > 0) ||
+        !project_hull(r, t, k, vp, eye, &size, &l))
         return 0;
     if (!every_size && size > (float)r->desc.list_below_px)
         return 0;
@@ -177,17 +177,34 @@ int sc_lists_take(sc_renderer *r, int k, double distance, const float vp[16],
      * rasterise (a third fewer than its rectangle's on the grid of
      * docs/speed.md). */
     int n = r->hulls.subpatches[k].vertex_count;
-    double *outline = r->list_projected + 2 * (n + 1);
-    int count = convex_outline(r->list_projected, n, outline);
+    double *outline = t->projected + 2 * (n + 1);
+    int count = convex_outline(t->projected, n, outline);
     int rows = l.rect[3] > l.rect[1] ? l.rect[3] - l.rect[1] : 0;
-    r->list_spans = grow(r->list_spans, &r->list_spans_cap, r->list_spans_len + 2 * (size_t)rows,
-                         sizeof(int));
-    l.spans_first = r->list_spans_len;
-    outline_spans(outline, count, l.rect, r->list_spans + l.spans_first);
-    r->list_spans_len += 2 * (size_t)rows;
-    r->listed = grow(r->listed, &r->listed_cap, (size_t)r->nlisted + 1, sizeof *r->listed);
-    r->listed[r->nlisted++] = l;
+    t->spans = grow(t->spans, &t->spans_cap, t->spans_len + 2 * (size_t)rows, sizeof(int));
+    l.spans_first = t->spans_len;
+    outline_spans(outline, count, l.rect, t->spans + l.spans_first);
+    t->spans_len += 2 * (size_t)rows;
+    t->listed = grow(t->listed, &t->listed_cap, (size_t)t->nlisted + 1, sizeof *t->listed);
+    t->listed[t->nlisted++] = l;
     return 1;
+}
+
+void sc_lists_merge(sc_renderer *r, int threads)
+{
+    list_take *to = &r->take[0];
+    for (int i = 1; i < threads; i++) {
+        const list_take *from = &r->take[i];
+        to->listed = grow(to->listed, &to->listed_cap, (size_t)to->nlisted + from->nlisted,
+                          sizeof *to->listed);
+        for (int j = 0; j < from->nlisted; j++) {
+            list_hull l = from->listed[j];
+            l.spans_first += to->spans_len;
+            to->listed[to->nlisted++] = l;
+        }
+        to->spans = grow(to->spans, &to->spans_cap, to->spans_len + from->spans_len, sizeof(int));
+        memcpy(to->spans + to->spans_len, from->spans, from->spans_len * sizeof(int));
+        to->spans_len += from->spans_len;
+    }
 }
 
 /* The listed hulls in slot order: by group, then box distance (its float
@@ -196,9 +213,10 @@ int sc_lists_take(sc_renderer *r, int k, double distance, const float vp[16],
  * each pass stable. */
 static void sort_listed(sc_renderer *r)
 {
-    int n = r->nlisted;
-    r->listed_spare = grow(r->listed_spare, &r->listed_spare_cap, (size_t)n, sizeof *r->listed);
-    list_hull *from = r->listed, *to = r->listed_spare;
+    list_take *frame = &r->take[0];
+    int n = frame->nlisted;
+    r->listed_spare = grow(r->listed_spare, &r->listed_spare_cap, (size_t)n, sizeof *frame->listed);
+    list_hull *from = frame->listed, *to = r->listed_spare;
     for (int pass = 0; pass < 5; pass++) {
         int buckets = pass < 4 ? 256 : r->ngroups;
         r->list_counts = grow(r->list_counts, &r->list_counts_cap, (size_t)buckets + 1, sizeof(size_t));
@@ -221,11 +239,11 @@ static void sort_listed(sc_renderer *r)
         to = t;
     }
     /* An odd number of passes: the sorted hulls are in the spare. */
-    r->listed_spare = r->listed;
-    r->listed = from;
+    r->listed_spare = frame->listed;
+    frame->listed = from;
     size_t cap = r->listed_spare_cap;
-    r->listed_spare_cap = r->listed_cap;
-    r->listed_cap = cap;
+    r->listed_spare_cap = frame->listed_cap;
+    frame->listed_cap = cap;
 }
 
 /* The key of group g's list program: its key as candidate lists draw it
@@ -242,8 +260,10 @@ static int frame_aovs(const sc_renderer *r) { return colour_frames(&r->desc) && 
 
 void sc_lists_begin(sc_renderer *r)
 {
-    r->nlisted = 0;
-    r->list_spans_len = 0;
+    for (int i = 0; i < SC_FRAME_MAX_THREADS; i++) {
+        r->take[i].nlisted = 0;
+        r->take[i].spans_len = 0;
+    }
     for (int g = 0; g < r->ngroups; g++) {
         scg_key key = list_key(r, g, frame_aovs(r));
         r->groups[g].listable = sc_program_cache_offers(r->programs, &key);
@@ -318,43 +338,84 @@ static size_t add_tiles(sc_renderer *r, const uint32_t *heads, int x0, int y0, i
     return ntiles;
 }
 
+/* The rows [from_row, to_row) of one group's lists, built on a thread of
+ * their own: the cells of a row band are disjoint from the other bands',
+ * and so are their entries once the counts are summed. */
+typedef struct list_band {
+    const list_hull *listed;
+    const int *spans;
+    int first, end;       /* the group's listed hulls */
+    uint32_t *heads, *items;
+    int x0, y0, rw;       /* the group's cells: rw a row, from (x0, y0) */
+    int from_row, to_row;
+} list_band;
+
+/* Bands for a group of at least this many listed hulls each (building the
+ * 100,352-patch grid's lists took 16-22 ms of its frame on one thread). */
+#define BAND_MIN_HULLS 1024
+
+/* Over the band's pixels of every listed hull: without items, counts
+ * each cell's entries at heads[cell + 1]; with them, puts each cell's
+ * entries in slot order from heads[cell] on. */
+static void *band_entries(void *arg)
+{
+    const list_band *b = arg;
+    for (int i = b->first; i < b->end; i++) {
+        const list_hull *l = &b->listed[i];
+        int from = l->rect[1] > b->from_row ? l->rect[1] : b->from_row;
+        int to = l->rect[3] < b->to_row ? l->rect[3] : b->to_row;
+        for (int y = from; y < to; y++) {
+            const int *span = b->spans + l->spans_first + 2 * (y - l->rect[1]);
+            uint32_t *row = b->heads + (size_t)(y - b->y0) * b->rw;
+            for (int x = span[0]; x < span[1]; x++) {
+                if (b->items)
+                    b->items[row[x - b->x0]++] = (uint32_t)i;
+                else
+                    row[x - b->x0 + 1]++;
+            }
+        }
+    }
+    return NULL;
+}
+
 int sc_lists_draw(sc_renderer *r, const float vp[16], const float eye[3], const float eye_low[3],
                   float footprint, GLuint *current, sc_error *err)
 {
     const sc_gl *gl = r->gl;
-    int n = r->nlisted;
+    int n = r->take[0].nlisted;
     r->list_entries = 0;
     if (!n)
         return SC_OK;
     int width = r->target.width, height = r->target.height;
     sort_listed(r);
+    const list_hull *listed = r->take[0].listed;
 
     /* Per slot (a listed hull, in this order) its domain, then its record
      * and box distance: what the program reads of a candidate. */
     r->list_slots = grow(r->list_slots, &r->list_slots_cap, (size_t)8 * n, sizeof(float));
     for (int i = 0; i < n; i++) {
-        const sc_subpatch *s = &r->hulls.subpatches[r->listed[i].hull];
+        const sc_subpatch *s = &r->hulls.subpatches[listed[i].hull];
         /* As the hull vertices carry it (sc_prepare_fill_vertices). */
         const double *rect = r->kinds[s->surface] == SCG_PATCH_NURBS ? s->domain : s->local;
         float *slot = r->list_slots + 8 * (size_t)i;
         for (int c = 0; c < 4; c++)
             slot[c] = (float)rect[c];
         slot[4] = (float)sc_gpu_data_record(&r->data, s->surface, s->patch);
-        slot[5] = r->listed[i].distance;
+        slot[5] = listed[i].distance;
         slot[6] = slot[7] = 0;
     }
 
     /* Per group, over the union of its rectangles: the pixels' lists as a
      * counting sort, each list in slot order (nearest box first). */
-    const int *spans = r->list_spans;
+    const int *spans = r->take[0].spans;
     const int tile = LIST_TILE_PX;
     size_t nheads = 0, nitems = 0, ntiles = 0;
     int ndraws = 0;
     for (int first = 0; first < n;) {
-        int g = r->listed[first].group, end = first;
+        int g = listed[first].group, end = first;
         int x0 = width, y0 = height, x1 = 0, y1 = 0;
-        for (; end < n && r->listed[end].group == g; end++) {
-            const int *rc = r->listed[end].rect;
+        for (; end < n && listed[end].group == g; end++) {
+            const int *rc = listed[end].rect;
             x0 = rc[0] < x0 ? rc[0] : x0;
             y0 = rc[1] < y0 ? rc[1] : y0;
             x1 = rc[2] > x1 ? rc[2] : x1;
@@ -374,14 +435,14 @@ int sc_lists_draw(sc_renderer *r, const float vp[16], const float eye[3], const 
         r->list_heads = grow(r->list_heads, &r->list_heads_cap, nheads + cells + 1, sizeof(uint32_t));
         uint32_t *heads = r->list_heads + nheads;
         memset(heads, 0, (cells + 1) * sizeof *heads);
-        for (int i = first; i < end; i++) {
-            const list_hull *l = &r->listed[i];
-            for (int y = l->rect[1]; y < l->rect[3]; y++) {
-                const int *span = spans + l->spans_first + 2 * (y - l->rect[1]);
-                for (int x = span[0]; x < span[1]; x++)
-                    heads[(size_t)(y - y0) * rw + (x - x0) + 1]++;
-            }
-        }
+        int threads = sc_frame_shares(r->desc.threads, end - first, BAND_MIN_HULLS);
+        list_band bands[SC_FRAME_MAX_THREADS];
+        for (int t = 0; t < threads; t++)
+            bands[t] = (list_band){.listed = listed, .spans = spans, .first = first, .end = end,
+                                   .heads = heads, .x0 = x0, .y0 = y0, .rw = rw,
+                                   .from_row = y0 + (int)((long long)(y1 - y0) * t / threads),
+                                   .to_row = y0 + (int)((long long)(y1 - y0) * (t + 1) / threads)};
+        sc_run_shares(band_entries, bands, sizeof bands[0], threads);
         for (size_t c = 0; c < cells; c++)
             heads[c + 1] += heads[c];
         size_t count = heads[cells];
@@ -390,14 +451,9 @@ int sc_lists_draw(sc_renderer *r, const float vp[16], const float eye[3], const 
          * shift afterwards makes it the start again. */
         for (size_t c = 0; c < cells + 1; c++)
             heads[c] += (uint32_t)nitems;
-        for (int i = first; i < end; i++) {
-            const list_hull *l = &r->listed[i];
-            for (int y = l->rect[1]; y < l->rect[3]; y++) {
-                const int *span = spans + l->spans_first + 2 * (y - l->rect[1]);
-                for (int x = span[0]; x < span[1]; x++)
-                    r->list_items[heads[(size_t)(y - y0) * rw + (x - x0)]++] = (uint32_t)i;
-            }
-        }
+        for (int t = 0; t < threads; t++)
+            bands[t].items = r->list_items;
+        sc_run_shares(band_entries, bands, sizeof bands[0], threads);
         memmove(heads + 1, heads, cells * sizeof *heads);
         heads[0] = (uint32_t)nitems;
         r->list_draws = grow(r->list_draws, &r->list_draws_cap, (size_t)ndraws + 1,
@@ -473,11 +529,13 @@ void sc_lists_destroy(sc_renderer *r)
         gl->DeleteBuffers(4, r->list_buffers);
         gl->DeleteTextures(4, r->list_textures);
     }
-    free(r->listed);
+    for (int i = 0; i < SC_FRAME_MAX_THREADS; i++) {
+        free(r->take[i].listed);
+        free(r->take[i].spans);
+        free(r->take[i].projected);
+    }
     free(r->listed_spare);
     free(r->list_counts);
-    free(r->list_projected);
-    free(r->list_spans);
     free(r->list_slots);
     free(r->list_heads);
     free(r->list_items);

@@ -564,6 +564,7 @@ void sc_renderer_stats(const sc_renderer *r, sc_render_stats *stats)
     stats->culled_hulls = r->culled;
     stats->readbacks = r->readbacks;
     stats->peel_layers = r->peel_layers;
+    stats->threads = r->frame_threads;
     stats->intersections = -1;
     if (r->frame_aovs && r->counter_buffer) {
         GLuint count = 0;

@@ -75,6 +75,10 @@ typedef struct sc_render_desc {
                                0: every frame writes them */
     int time_intersection;  /* the frames' hull draws between two glFinish,
                                timed (sc_render_stats.intersect_ms) */
+    int threads;            /* CPU threads of a frame's pass over the hulls
+                               (the view test, candidate lists' outlines);
+                               0: one per online processor; at most 8, and
+                               one per 1,024 hulls */
 } sc_render_desc;
 
 
@@ -114,6 +118,8 @@ typedef struct sc_render_stats {
     int peel_layers;        /* depth peeling: the layers that found hull
                                entries in front of a pixel's best hit (0
                                when the frame did not peel) */
+    int threads;            /* CPU threads of the last frame's pass over
+                               the hulls */
 } sc_render_stats;
 
 typedef struct sc_renderer sc_renderer;

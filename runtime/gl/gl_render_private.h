@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "frame_threads.h"
 #include "gl_render.h"
 #include "gl_data.h"
 #include "gl_target.h"
@@ -114,8 +115,22 @@ typedef struct list_hull {
     float distance;   /* from the eye to its box, rounded down */
     int rect[4];      /* pixels [x0, x1) × [y0, y1) around it */
     size_t spans_first; /* per row of rect, [from, to) of its pixels, in
-                           renderer.list_spans */
+                           its list_take's spans */
 } list_hull;
+
+/* The listed hulls one thread of a frame's pass over the hulls took
+ * (gl_render.c), their pixel spans, and room for one hull's projected
+ * vertices. The frame's lists are those of take[0], to which the other
+ * threads' are appended in hull order. */
+typedef struct list_take {
+    list_hull *listed;
+    int nlisted;
+    size_t listed_cap;
+    int *spans;
+    size_t spans_len, spans_cap;
+    double *projected;
+    size_t projected_cap;
+} list_take;
 
 /* One draw of a group's list program: the lists of the pixels of rect
  * (whole tiles) start at entry first_head of the heads, its tiles at
@@ -256,19 +271,18 @@ struct sc_renderer {
                                 front of their pixel's best hit after the
                                 last layer (0 unless the layers ran out) */
     int peel_fallback;       /* the last frame fell back (gl_render.c) */
-    /* Candidate lists (gl_lists.c): the frame's listed hulls, per slot
-     * their domain, record and box distance, the heads and entries of the
-     * pixels' lists, the draws and their tiles; their buffers and
-     * textures (heads, entries, slots, tiles) and an empty vertex array
-     * for the tiles' points; the listed hulls' pixel spans, room for one
-     * hull's projected vertices, and the sort's spare array and counts. */
-    list_hull *listed, *listed_spare;
-    int nlisted;
-    size_t listed_cap;
-    int *list_spans;
-    double *list_projected;
+    /* Candidate lists (gl_lists.c): the listed hulls each thread took
+     * (take[0]: the frame's), per slot their domain, record and box
+     * distance, the heads and entries of the pixels' lists, the draws and
+     * their tiles; their buffers and textures (heads, entries, slots,
+     * tiles) and an empty vertex array for the tiles' points; the sort's
+     * spare array and counts. */
+    list_take take[SC_FRAME_MAX_THREADS];
+    int frame_threads;       /* of the last frame: threads of its pass over
+                                the hulls */
+    list_hull *listed_spare;
     size_t *list_counts;
-    size_t list_spans_len, list_spans_cap, list_projected_cap, listed_spare_cap, list_counts_cap;
+    size_t listed_spare_cap, list_counts_cap;
     float *list_slots;
     uint32_t *list_heads, *list_items;
     list_draw *list_draws;
@@ -350,12 +364,14 @@ void sc_peel_destroy(sc_renderer *r);
  * which groups' list programs the program cache offers. */
 void sc_lists_begin(sc_renderer *r);
 /* Adds hull k (not holding the eye; box at `distance` from the eye) to
- * the frame's listed hulls when its group is listable, its vertices
+ * take's listed hulls when its group is listable, its vertices
  * project inside the near and far planes and, unless every_size, into a
  * rectangle at most desc.list_below_px wide and high on the renderer's
  * target; 1 when it did. */
-int sc_lists_take(sc_renderer *r, int k, double distance, const float vp[16],
-                  const double eye[3], int every_size);
+int sc_lists_take(const sc_renderer *r, list_take *take, int k, double distance,
+                  const float vp[16], const double eye[3], int every_size);
+/* Appends the listed hulls of take[1 … threads) to take[0], in order. */
+void sc_lists_merge(sc_renderer *r, int threads);
 /* Builds the listed hulls' per-pixel lists, sends them and draws the
  * tiles that hold them with each group's ert5 program, into the
  * renderer's own target, bound, under the depth test. */

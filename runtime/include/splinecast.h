@@ -545,6 +545,11 @@ typedef struct sc_renderer_desc {
     /* Which frames write the AOVs (surface ids, uv, distance, point,
      * normal, iterations) besides the colour and depth. */
     sc_aovs aovs;
+    /* CPU threads of each frame's pass over the hulls (the view test and
+     * the candidate lists' outlines), which grows with the patch count:
+     * 0, one per online processor; at most 8 are used, and one per 1,024
+     * hulls. Results do not depend on it. */
+    int threads;
 } sc_renderer_desc;
 
 /* Writes what a renderer made with desc would upload for the scene —
