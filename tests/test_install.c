@@ -335,6 +335,20 @@ static void count_generated(sc_log_level level, const char *message, void *user)
         ++*(int *)user;
 }
 
+/* The default scene (the teapot) and a GL context through the public
+ * calls: 1; 0 after sc_shutdown where no context can be made (the caller
+ * skips); -1 where the scene cannot be made. */
+static int open_teapot(sc_scene_id *scene, sc_context_id *ctx, sc_error *err)
+{
+    if (sc_make_scene(NULL, scene, err) != SC_OK)
+        return -1;
+    if (sc_make_context(NULL, ctx, err) != SC_OK) {
+        sc_shutdown();
+        return 0;
+    }
+    return 1;
+}
+
 /* A renderer made through the API takes its programs from the context's
  * cache: its keys, asked of the specialization API, are cache hits that
  * name the GL programs it draws with, and each is generated once. */
@@ -343,11 +357,10 @@ TEST(install_api_renderer_shares_programs)
     sc_error err = {0};
     sc_scene_id scene;
     sc_context_id ctx;
-    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
-    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
-        sc_shutdown();
+    int opened = open_teapot(&scene, &ctx, &err);
+    CHECK(opened >= 0);
+    if (!opened)
         SKIP("no GL context: %s", err.message);
-    }
     int generated = 0;
     sc_set_logger(count_generated, &generated);
     sc_renderer_id renderer;
@@ -391,11 +404,10 @@ TEST(install_api_render_against_reference)
     sc_error err = {0};
     sc_scene_id scene;
     sc_context_id ctx;
-    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
-    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
-        sc_shutdown();
+    int opened = open_teapot(&scene, &ctx, &err);
+    CHECK(opened >= 0);
+    if (!opened)
         SKIP("no GL context: %s", err.message);
-    }
     sc_renderer_id renderer;
     sc_renderer_desc bad = {.max_iters = 65};
     CHECK_INT(sc_make_renderer(ctx, scene, &bad, &renderer, &err), SC_FAIL);
@@ -503,11 +515,10 @@ TEST(install_api_update_surface)
     sc_error err = {0};
     sc_scene_id scene;
     sc_context_id ctx;
-    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
-    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
-        sc_shutdown();
+    int opened = open_teapot(&scene, &ctx, &err);
+    CHECK(opened >= 0);
+    if (!opened)
         SKIP("no GL context: %s", err.message);
-    }
     sc_renderer_id before, after;
     CHECK_INT(sc_make_renderer(ctx, scene, NULL, &before, &err), SC_OK);
     sc_renderer_info made;
@@ -593,11 +604,10 @@ TEST(install_api_update_moves_the_default_view)
     sc_error err = {0};
     sc_scene_id scene;
     sc_context_id ctx;
-    CHECK_INT(sc_make_scene(NULL, &scene, &err), SC_OK);
-    if (sc_make_context(NULL, &ctx, &err) != SC_OK) {
-        sc_shutdown();
+    int opened = open_teapot(&scene, &ctx, &err);
+    CHECK(opened >= 0);
+    if (!opened)
         SKIP("no GL context: %s", err.message);
-    }
     sc_renderer_id before, after;
     CHECK_INT(sc_make_renderer(ctx, scene, NULL, &before, &err), SC_OK);
     sc_camera_desc camera = {.width = 64, .height = 64};
