@@ -119,21 +119,25 @@ static int render_scale(const char *path, int w, int h, int list_below_px, sc_ac
     return ok;
 }
 
+/* At most 0.1 % of the reference's pixels failing: the grid fails about
+ * 0.05 % at 192² as hulls and through lists (the rims and handles of
+ * teapots about 10 pixels wide), and restarting from the sub-patch's middle
+ * alone on small sub-patches, tried and not kept (docs/speed.md), failed
+ * 0.13 % through lists. */
 static void check_accurate(const sc_accuracy *acc, const char *what)
 {
-    if (!(acc->fail_pct <= 0.5 && acc->pos_median_px < 0.1))
-        fprintf(stderr, "  %s: fail_pct %g pos_median_px %g (hits %ld)\n", what,
-                acc->fail_pct, acc->pos_median_px, (long)acc->ref_hits);
-    CHECK(acc->fail_pct <= 0.5);
+    printf("  %s: fail_pct %g pos_median_px %g (hits %ld)\n", what, acc->fail_pct,
+           acc->pos_median_px, (long)acc->ref_hits);
+    CHECK(acc->fail_pct <= 0.1);
     CHECK(acc->pos_median_px < 0.1);
 }
 
 /* 16 × 12 teapots (6,144 patches) at 192 × 192: every hull a few pixels
  * across, every pixel as the reference sees it, drawn as hulls and through
  * candidate lists (the default at that size). As hulls, most of the rays
- * miss (gen/hybrid.c skips the restarts of rays that pass wide of a
- * record); the lists run a ray only where a hull's outline holds the
- * pixel, and stop at the first box behind a hit. */
+ * miss (and a miss runs all of the hybrid's restarts); the lists run a ray
+ * only where a hull's outline holds the pixel, and stop at the first box
+ * behind a hit. */
 TEST(scale_grid_renders)
 {
     const char *dir = make_scenes(16, 12, 4);
