@@ -603,11 +603,45 @@ static scg_value cross_about_ray(scg_builder *b, scg_value p, scg_value q)
                    scg_mul(b, scg_comp(b, p, 1), scg_comp(b, q, 0)));
 }
 
+/* The nearest crossing so far (*best its parameters, *best_depth its
+ * coordinate along the ray), replaced by that of triangle (p[0], p[1],
+ * p[2]) of points in the ray's frame with parameters uv[], where the ray
+ * crosses it nearer. w[k] is the 2D cross product about the ray of the two
+ * points other than p[k], in order (p[1] × p[2], p[2] × p[0], p[0] × p[1]):
+ * the corners' weights, of one sign where the ray crosses. */
+static void nearer_triangle(scg_isect *c, const scg_value p[3], const scg_value uv[3],
+                            const scg_value w[3], scg_value *best, scg_value *best_depth)
+{
+    scg_builder *b = c->b;
+    scg_value total = scg_add(b, scg_add(b, w[0], w[1]), w[2]);
+    scg_value lowest = scg_min(b, scg_min(b, w[0], w[1]), w[2]);
+    scg_value highest = scg_max(b, scg_max(b, w[0], w[1]), w[2]);
+    scg_value one_side = scg_or(b, scg_le(b, c->zero, lowest), scg_le(b, highest, c->zero));
+    scg_value crosses = scg_and(b, one_side, scg_not(b, scg_eq(b, total, c->zero)));
+    scg_value inv = scg_div(b, scg_const_f(b, 1.0f), total);
+    scg_value depth = 0, at = 0;
+    for (int k = 0; k < 3; k++) {
+        scg_value weight = scg_mul(b, w[k], inv);
+        scg_value z = scg_mul(b, weight, scg_comp(b, p[k], 2));
+        scg_value t = scg_mul(b, uv[k], weight);
+        depth = k ? scg_add(b, depth, z) : z;
+        at = k ? scg_add(b, at, t) : t;
+    }
+    scg_value nearer = scg_and(b, crosses, scg_lt(b, depth, *best_depth));
+    *best = scg_select(b, nearer, at, *best);
+    *best_depth = scg_select(b, nearer, depth, *best_depth);
+}
+
 /* Of a grid of (nu + 1) × (nv + 1) points in the ray's frame (pt, row
  * after row in u) with parameters uv, the parameters at the nearest
  * crossing of the ray with its triangles (each quad split along its
- * diagonal from (i, j) to (i + 1, j + 1)); where the ray crosses none, the
- * parameters of the point that passes nearest it. */
+ * diagonal from (i, j) to (i + 1, j + 1)) and with the fans that close
+ * each of its four boundary polygons; where the ray crosses none, the
+ * parameters of the point that passes nearest it. The fans stand for the
+ * hull's faces along the sub-patch's edges: a ray that enters the hull
+ * across an edge that curves (the rim of a quarter of a surface of
+ * revolution) and grazes the surface just inside it crosses the grid
+ * itself only behind that crossing. */
 static scg_value nearest_mesh_crossing(scg_isect *c, const scg_value *pt, const scg_value *uv,
                                        int nu, int nv)
 {
@@ -634,33 +668,33 @@ static scg_value nearest_mesh_crossing(scg_isect *c, const scg_value *pt, const 
             scg_value a = pt[ia], d = pt[id];
             scg_value diagonal = cross_about_ray(b, a, d);
             for (int k = 0; k < 2; k++) {
-                /* Triangle (a, d, e), then (a, e, d): the weights of its
-                 * corners are the areas the ray makes with the opposite
-                 * edges, in one orientation. */
+                /* The triangles on either side of the diagonal, (a, d, e)
+                 * with e the corner (i + 1, j), then (i, j + 1); the
+                 * weights of the second taken in the opposite turn. */
                 scg_value e = pt[corner[k]];
-                scg_value w_e = k ? scg_neg(b, diagonal) : diagonal;
-                scg_value w_a = k ? cross_about_ray(b, e, d) : cross_about_ray(b, d, e);
-                scg_value w_d = k ? cross_about_ray(b, a, e) : cross_about_ray(b, e, a);
-                scg_value total = scg_add(b, scg_add(b, w_a, w_d), w_e);
-                scg_value lowest = scg_min(b, scg_min(b, w_a, w_d), w_e);
-                scg_value highest = scg_max(b, scg_max(b, w_a, w_d), w_e);
-                scg_value one_side = scg_or(b, scg_le(b, c->zero, lowest), scg_le(b, highest, c->zero));
-                scg_value crosses = scg_and(b, one_side, scg_not(b, scg_eq(b, total, c->zero)));
-                scg_value inv = scg_div(b, scg_const_f(b, 1.0f), total);
-                scg_value ba = scg_mul(b, w_a, inv);
-                scg_value bd = scg_mul(b, w_d, inv);
-                scg_value be = scg_mul(b, w_e, inv);
-                scg_value depth = scg_mul(b, ba, scg_comp(b, a, 2));
-                depth = scg_add(b, depth, scg_mul(b, bd, scg_comp(b, d, 2)));
-                depth = scg_add(b, depth, scg_mul(b, be, scg_comp(b, e, 2)));
-                scg_value at = scg_mul(b, uv[ia], ba);
-                at = scg_add(b, at, scg_mul(b, uv[id], bd));
-                at = scg_add(b, at, scg_mul(b, uv[corner[k]], be));
-                scg_value nearer = scg_and(b, crosses, scg_lt(b, depth, best_depth));
-                best = scg_select(b, nearer, at, best);
-                best_depth = scg_select(b, nearer, depth, best_depth);
+                scg_value tri[3] = {a, d, e};
+                scg_value tri_uv[3] = {uv[ia], uv[id], uv[corner[k]]};
+                scg_value w[3] = {k ? cross_about_ray(b, e, d) : cross_about_ray(b, d, e),
+                                  k ? cross_about_ray(b, a, e) : cross_about_ray(b, e, a),
+                                  k ? scg_neg(b, diagonal) : diagonal};
+                nearer_triangle(c, tri, tri_uv, w, &best, &best_depth);
             }
         }
+    /* The boundary polygons: rows j = 0 and nv, columns i = 0 and nu, each
+     * a fan from its first point. */
+    for (int edge = 0; edge < 4; edge++) {
+        int along_u = edge < 2, n = along_u ? nu : nv;
+        int first = edge == 0 ? 0 : edge == 1 ? nv * (nu + 1) : edge == 2 ? 0 : nu;
+        int stride = along_u ? 1 : nu + 1;
+        for (int k = 1; k < n; k++) {
+            int i0 = first, i1 = first + k * stride, i2 = first + (k + 1) * stride;
+            scg_value tri[3] = {pt[i0], pt[i1], pt[i2]};
+            scg_value tri_uv[3] = {uv[i0], uv[i1], uv[i2]};
+            scg_value w[3] = {cross_about_ray(b, tri[1], tri[2]), cross_about_ray(b, tri[2], tri[0]),
+                              cross_about_ray(b, tri[0], tri[1])};
+            nearer_triangle(c, tri, tri_uv, w, &best, &best_depth);
+        }
+    }
     scg_name(b, NULL);
     return best;
 }
@@ -673,8 +707,11 @@ static scg_value nearest_mesh_crossing(scg_isect *c, const scg_value *pt, const 
  * points restricted to its domain, at the Greville parameters i/p, j/q):
  * like the hull, it lies in front of a surface that bulges towards the
  * ray, where a mesh of surface points would lie behind it and miss the
- * ray. With hulls up to 8 pixels listed, the tea set at 128², 256² and
- * 1024² failed no more pixels than the hulls with the net; 0.008 % of the
+ * ray; and closed by fans over its four edges, like the hull's faces
+ * there (nearest_mesh_crossing). With hulls up to 8 pixels listed, the tea
+ * set at 128², 256² and 1024² failed no more pixels than the hulls with
+ * the net (and the 100,352-patch grid at 1024² 0.276 % against the hulls'
+ * 0.054 % without the fans, 0.043 % with them); 0.008 % of the
  * teapot's at 256² with a mesh of surface points; up to 0.073 % (the
  * teacup at 256²) from the surface point of a 3 × 3 grid nearest the ray
  * (docs/speed.md, "Candidate lists"). NURBS and generic keys, which hold
