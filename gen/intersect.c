@@ -604,15 +604,17 @@ static scg_value cross_about_ray(scg_builder *b, scg_value p, scg_value q)
 }
 
 /* The nearest crossing so far (*best its parameters, *best_depth its
- * coordinate along the ray), replaced by that of triangle (p[0], p[1],
- * p[2]) of points in the ray's frame with parameters uv[], where the ray
- * crosses it nearer. w[k] is the 2D cross product about the ray of the two
- * points other than p[k], in order (p[1] × p[2], p[2] × p[0], p[0] × p[1]):
- * the corners' weights, of one sign where the ray crosses. */
+ * coordinate along the ray), replaced by that of triangle p[] (points in
+ * the ray's frame, parameters uv[]) where the ray crosses it nearer. The
+ * weight of each corner is the area the ray makes with the opposite edge,
+ * all of one sign where the ray crosses. */
 static void nearer_triangle(scg_isect *c, const scg_value p[3], const scg_value uv[3],
-                            const scg_value w[3], scg_value *best, scg_value *best_depth)
+                            scg_value *best, scg_value *best_depth)
 {
     scg_builder *b = c->b;
+    scg_value w[3];
+    for (int k = 0; k < 3; k++)
+        w[k] = cross_about_ray(b, p[(k + 1) % 3], p[(k + 2) % 3]);
     scg_value total = scg_add(b, scg_add(b, w[0], w[1]), w[2]);
     scg_value lowest = scg_min(b, scg_min(b, w[0], w[1]), w[2]);
     scg_value highest = scg_max(b, scg_max(b, w[0], w[1]), w[2]);
@@ -663,36 +665,26 @@ static scg_value nearest_mesh_crossing(scg_isect *c, const scg_value *pt, const 
     scg_value best_depth = scg_const_f(b, 3.0e38f);
     for (int j = 0; j < nv; j++)
         for (int i = 0; i < nu; i++) {
+            /* The triangles on either side of the diagonal from (i, j) to
+             * (i + 1, j + 1), with the corner (i + 1, j), then (i, j + 1). */
             int ia = j * (nu + 1) + i, id = ia + nu + 2;
             int corner[2] = {ia + 1, ia + nu + 1};
-            scg_value a = pt[ia], d = pt[id];
-            scg_value diagonal = cross_about_ray(b, a, d);
             for (int k = 0; k < 2; k++) {
-                /* The triangles on either side of the diagonal, (a, d, e)
-                 * with e the corner (i + 1, j), then (i, j + 1); the
-                 * weights of the second taken in the opposite turn. */
-                scg_value e = pt[corner[k]];
-                scg_value tri[3] = {a, d, e};
+                scg_value tri[3] = {pt[ia], pt[id], pt[corner[k]]};
                 scg_value tri_uv[3] = {uv[ia], uv[id], uv[corner[k]]};
-                scg_value w[3] = {k ? cross_about_ray(b, e, d) : cross_about_ray(b, d, e),
-                                  k ? cross_about_ray(b, a, e) : cross_about_ray(b, e, a),
-                                  k ? scg_neg(b, diagonal) : diagonal};
-                nearer_triangle(c, tri, tri_uv, w, &best, &best_depth);
+                nearer_triangle(c, tri, tri_uv, &best, &best_depth);
             }
         }
-    /* The boundary polygons: rows j = 0 and nv, columns i = 0 and nu, each
-     * a fan from its first point. */
-    for (int edge = 0; edge < 4; edge++) {
-        int along_u = edge < 2, n = along_u ? nu : nv;
-        int first = edge == 0 ? 0 : edge == 1 ? nv * (nu + 1) : edge == 2 ? 0 : nu;
-        int stride = along_u ? 1 : nu + 1;
-        for (int k = 1; k < n; k++) {
-            int i0 = first, i1 = first + k * stride, i2 = first + (k + 1) * stride;
-            scg_value tri[3] = {pt[i0], pt[i1], pt[i2]};
-            scg_value tri_uv[3] = {uv[i0], uv[i1], uv[i2]};
-            scg_value w[3] = {cross_about_ray(b, tri[1], tri[2]), cross_about_ray(b, tri[2], tri[0]),
-                              cross_about_ray(b, tri[0], tri[1])};
-            nearer_triangle(c, tri, tri_uv, w, &best, &best_depth);
+    /* The boundary polygons, each a fan from its first point: rows j = 0
+     * and nv, columns i = 0 and nu (first point, step, segments). */
+    const int edges[4][3] = {{0, 1, nu}, {nv * (nu + 1), 1, nu}, {0, nu + 1, nv}, {nu, nu + 1, nv}};
+    for (int e = 0; e < 4; e++) {
+        int first = edges[e][0], step = edges[e][1];
+        for (int k = 1; k < edges[e][2]; k++) {
+            int at[3] = {first, first + k * step, first + (k + 1) * step};
+            scg_value tri[3] = {pt[at[0]], pt[at[1]], pt[at[2]]};
+            scg_value tri_uv[3] = {uv[at[0]], uv[at[1]], uv[at[2]]};
+            nearer_triangle(c, tri, tri_uv, &best, &best_depth);
         }
     }
     scg_name(b, NULL);
