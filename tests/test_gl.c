@@ -61,6 +61,25 @@ TEST(gl_backend_names)
     CHECK_CONTAINS(err.message, "glx");
 }
 
+
+/* Which devices of EGL's device platform are tried, by their extension
+ * strings as drivers report them: Mesa's software device (as on this
+ * project's CI machines) is left to the surfaceless platform; a Mesa DRM
+ * device and NVIDIA's are tried, NVIDIA's also where no DRM node is open
+ * to the process and it names only its CUDA device. */
+TEST(gl_egl_device_choice)
+{
+    CHECK_INT(sc_egl_device_wanted("EGL_MESA_device_software EGL_EXT_device_drm_render_node"), 0);
+    CHECK_INT(sc_egl_device_wanted("EGL_EXT_device_drm EGL_EXT_device_drm_render_node"), 1);
+    CHECK_INT(sc_egl_device_wanted("EGL_NV_device_cuda EGL_EXT_device_drm "
+                                   "EGL_EXT_device_drm_render_node EGL_EXT_device_query_name "
+                                   "EGL_EXT_device_persistent_id"), 1);
+    CHECK_INT(sc_egl_device_wanted("EGL_NV_device_cuda EGL_EXT_device_query_name "
+                                   "EGL_EXT_device_persistent_id"), 1);
+    /* Whole names only: a longer name that starts with it is another. */
+    CHECK_INT(sc_egl_device_wanted("EGL_MESA_device_software_x"), 1);
+    CHECK_INT(sc_egl_device_wanted(NULL), 0);
+}
 /* The entry points of GL 4.5 core resolve, and calls through the table reach
  * the driver (answers only the context can give). */
 TEST(gl_loader_table)

@@ -103,9 +103,17 @@ static sc_gl_proc egl_get_proc(const char *name, void *user)
     return (sc_gl_proc)eglGetProcAddress(name);
 }
 
-/* A display on a hardware device when the device platform offers one (a
- * DRM device that is not Mesa's software device), else the surfaceless
- * platform; EGL_NO_DISPLAY with err saying why when neither is there (some
+int sc_egl_device_wanted(const char *extensions)
+{
+    /* Not EGL_EXT_device_drm: NVIDIA's driver names it only where the
+     * process may open the GPU's DRM node, which a server or container
+     * often does not expose (/dev/nvidia* alone), and the device draws
+     * all the same. */
+    return extensions && !has_extension(extensions, "EGL_MESA_device_software");
+}
+
+/* A display on a hardware device when the device platform offers one that
+ * initialises (sc_egl_device_wanted), else the surfaceless platform; EGL_NO_DISPLAY with err saying why when neither is there (some
  * of those reasons leave no EGL error to name). */
 static EGLDisplay egl_open_display(const char **platform, sc_error *err)
 {
@@ -125,9 +133,7 @@ static EGLDisplay egl_open_display(const char **platform, sc_error *err)
         EGLint count = 0;
         if (query_devices && query_string && query_devices(16, devices, &count)) {
             for (EGLint i = 0; i < count; i++) {
-                const char *ext = query_string(devices[i], EGL_EXTENSIONS);
-                if (!has_extension(ext, "EGL_EXT_device_drm") ||
-                    has_extension(ext, "EGL_MESA_device_software"))
+                if (!sc_egl_device_wanted(query_string(devices[i], EGL_EXTENSIONS)))
                     continue;
                 EGLDisplay d = get_display(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
                 if (d != EGL_NO_DISPLAY && eglInitialize(d, NULL, NULL)) {

@@ -43,5 +43,11 @@ sc_backend sc_gl_context_backend(const sc_gl_context *ctx);
 /* "egl-surfaceless", "egl-device" or "osmesa", then GL_RENDERER. */
 const char *sc_gl_context_description(const sc_gl_context *ctx);
 
+/* Whether EGL's device platform tries the device whose extension string
+ * (eglQueryDeviceStringEXT's EGL_EXTENSIONS) is `extensions`: any device
+ * but Mesa's software rasteriser, which the surfaceless platform reaches
+ * too; 0 for NULL. */
+int sc_egl_device_wanted(const char *extensions);
+
 
 #endif
